@@ -1,0 +1,4 @@
+// The rigidity command line: run, validate, materials, compare (SPEC §4).
+#include "rigidity/cli.hpp"
+
+int main(int argc, char** argv) { return rigidity::cli_main(argc, argv); }

@@ -1,0 +1,89 @@
+#pragma once
+/// What a solver hands back: everything the run outputs of SPEC §5 are written
+/// from, in natural units. Only what the scene's outputs asked for is filled.
+
+#include <string>
+#include <vector>
+
+#include "rigidity/quantity.hpp"
+
+namespace rigidity {
+
+struct RunEvent {
+  double t = 0.0;
+  std::string kind;                 ///< contact | separation | cavitation | ...
+  double x = 0.0;                   ///< lab position
+  std::vector<std::string> bodies;
+};
+
+/// One body (or piece of a parted body) at t_end.
+struct BodyResult {
+  std::string name;
+  double x_left = 0.0, x_right = 0.0;
+  double velocity_mean = 0.0;       ///< weighted by rest mass
+  double momentum = 0.0;            ///< per unit area
+  double energy = 0.0;              ///< per unit area, rest energy included
+};
+
+struct Conservation {
+  double energy_initial = 0.0, energy_final = 0.0, energy_dissipated = 0.0;
+  double momentum_initial = 0.0, momentum_final = 0.0, wall_impulse = 0.0;
+  double wall_work = 0.0;           ///< energy given by walls and pistons (zero for fixed walls)
+};
+
+struct RunStats {
+  long fronts = 0;                  ///< fronts created over the run
+  long interactions = 0;            ///< Riemann problems solved
+  double wall_time_s = 0.0;         ///< solving only
+};
+
+struct ProbeSample {
+  double t;
+  int probe;                        ///< index into scene.outputs.probes
+  Quantity quantity;
+  double value;
+};
+
+struct SnapshotSample {
+  double t;
+  int body;                         ///< index into RunResult::body_names
+  double X;
+  Quantity quantity;
+  double value;
+};
+
+enum class FrontKind { shock, contact, rarefaction, interface, boundary };
+[[nodiscard]] constexpr const char* to_string(FrontKind k) {
+  switch (k) {
+    case FrontKind::shock: return "shock";
+    case FrontKind::contact: return "contact";
+    case FrontKind::rarefaction: return "rarefaction";
+    case FrontKind::interface: return "interface";
+    case FrontKind::boundary: return "boundary";
+  }
+  return "?";
+}
+
+/// A straight piece of a front's world line in the lab x–t plane.
+struct FrontSegment {
+  double t0, x0, t1, x1;
+  FrontKind kind;
+  int family;                       ///< -1 left-moving (C-), +1 right-moving (C+), 0 neither
+};
+
+struct RunResult {
+  std::string status = "ok";
+  std::string solver;               ///< "characteristics" | "finite_volume"
+  std::vector<std::pair<std::string, double>> solver_numbers;   ///< e.g. tolerance, cells
+  std::vector<std::string> warnings;
+  std::vector<RunEvent> events;
+  std::vector<BodyResult> bodies;
+  Conservation conservation;
+  RunStats stats;
+  std::vector<std::string> body_names;   ///< names snapshot samples refer to
+  std::vector<ProbeSample> probes;
+  std::vector<SnapshotSample> snapshots;
+  std::vector<FrontSegment> fronts;
+};
+
+}  // namespace rigidity

@@ -1,0 +1,111 @@
+#pragma once
+/// A validated scene (SPEC §3), in natural units (c = 1), ready for a solver.
+/// Produced only by the scene loader, which has checked every rule; solvers may
+/// rely on it (bodies ordered left to right and not overlapping, |v| < 1, s admissible).
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rigidity/errors.hpp"
+#include "rigidity/material.hpp"
+#include "rigidity/quantity.hpp"
+#include "rigidity/units.hpp"
+
+namespace rigidity {
+
+struct MaterialDecl {
+  std::string name;   ///< the scene's name for it ("steel")
+  std::string model;  ///< registry name ("rigid")
+  std::shared_ptr<const Material> material;
+  SourceLocation where;
+};
+
+/// A piece of a body with uniform initial state.
+struct Segment {
+  double length = 1.0;           ///< natural length ΔX
+  double rapidity = 0.0;         ///< φ = artanh v (exact for ultra-relativistic bodies)
+  Stretch stretch;               ///< initial stretch
+  std::string material;          ///< scene material name (the body's unless overridden)
+};
+
+struct BodyDecl {
+  std::string name;
+  double position = 0.0;          ///< lab x of the left end at t = 0
+  std::vector<Segment> segments;  ///< left to right; X runs from 0 to the sum of lengths
+  SourceLocation where;
+  [[nodiscard]] double natural_length() const;
+};
+
+enum class BoundaryType { free, wall, piston };
+
+/// A piston's velocity history: v = velocity[i] for times[i] <= t < times[i+1]
+/// (piecewise constant; times[0] = 0).
+struct PistonMotion {
+  std::vector<double> times;
+  std::vector<double> rapidities;
+};
+
+struct BoundaryDecl {
+  BoundaryType type = BoundaryType::free;
+  bool bonded = false;              ///< wall/piston pulls as well as pushes
+  double position = 0.0;            ///< lab x at t = 0 (wall, piston); resolved by the loader
+  PistonMotion piston;              ///< for type == piston
+  SourceLocation where;
+};
+
+enum class SolverMethod { characteristics, finite_volume };
+enum class FluxType { hll, exact };
+
+struct SolverDecl {
+  SolverMethod method = SolverMethod::characteristics;
+  double tolerance = 1.0e-12;   ///< characteristics: target accuracy (fan step in Ψ)
+  long max_fronts = 1000000;    ///< characteristics: refuse to track more live fronts than this
+  int cells = 400;              ///< finite volume
+  int order = 2;                ///< finite volume: 1 or 2
+  double cfl = 0.5;             ///< finite volume
+  FluxType flux = FluxType::hll;
+};
+
+struct ProbeDecl {
+  std::string name;
+  std::string body;
+  double X = 0.0;                       ///< material label probed (left → 0, right → l0)
+  std::vector<Quantity> quantities;
+  double every = 0.0;                   ///< sampling interval; samples at 0, every, 2 every, ... ≤ t_end
+  SourceLocation where;
+};
+
+struct SnapshotDecl {
+  std::vector<double> times;
+  std::vector<Quantity> quantities;
+  int samples = 101;                    ///< per body, uniform in X, both ends included
+  std::vector<std::string> bodies;      ///< empty → every body
+  SourceLocation where;
+};
+
+struct OutputsDecl {
+  std::vector<ProbeDecl> probes;
+  std::vector<SnapshotDecl> snapshots;
+  bool fronts = false;
+};
+
+struct Scene {
+  std::string name;
+  std::string source;                   ///< file the scene was read from ("<default>" for the embedded one)
+  UnitSystem units = UnitSystem::natural;
+  std::vector<std::string> plugins;
+  std::map<std::string, MaterialDecl> materials;
+  std::vector<BodyDecl> bodies;          ///< left to right
+  BoundaryDecl left, right;
+  SolverDecl solver;
+  double t_end = 1.0;
+  OutputsDecl outputs;
+  std::string resolved_yaml;             ///< the scene as run, every default filled in, in the scene's units
+
+  [[nodiscard]] const Material& material_of(const Segment& seg) const { return *materials.at(seg.material).material; }
+};
+
+}  // namespace rigidity

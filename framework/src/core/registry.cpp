@@ -1,0 +1,61 @@
+#include "rigidity/registry.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "rigidity/spelling.hpp"
+
+namespace rigidity {
+
+
+MaterialRegistry& MaterialRegistry::instance() {
+  static MaterialRegistry registry;
+  return registry;
+}
+
+bool MaterialRegistry::add(MaterialInfo info) {
+  for (const MaterialInfo& existing : materials_) {
+    if (existing.name != info.name) continue;
+    std::string conflict = "material '" + info.name + "' is registered twice: at " + existing.file + ":" +
+                           std::to_string(existing.line) + " and at " + info.file + ":" + std::to_string(info.line);
+    if (sealed_) throw std::runtime_error(conflict);
+    conflicts_.push_back(std::move(conflict));
+    return false;
+  }
+  materials_.push_back(std::move(info));
+  return true;
+}
+
+void MaterialRegistry::check() const {
+  if (conflicts_.empty()) return;
+  std::string all;
+  for (const std::string& c : conflicts_) all += (all.empty() ? "" : "\n") + c;
+  throw std::runtime_error(all);
+}
+
+const MaterialInfo* MaterialRegistry::find(std::string_view name) const {
+  for (const MaterialInfo& m : materials_)
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+const MaterialInfo& MaterialRegistry::at(std::string_view name) const {
+  if (const MaterialInfo* m = find(name)) return *m;
+  std::string message = "unknown material model '" + std::string(name) + "'";
+  const std::string near = closest(name);
+  if (!near.empty()) message += " (did you mean '" + near + "'?)";
+  message += "; registered:";
+  for (const std::string& n : names()) message += " " + n;
+  throw std::invalid_argument(message);
+}
+
+std::vector<std::string> MaterialRegistry::names() const {
+  std::vector<std::string> out;
+  for (const MaterialInfo& m : materials_) out.push_back(m.name);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::string MaterialRegistry::closest(std::string_view name) const { return closest_match(name, names()); }
+
+}  // namespace rigidity
