@@ -1,0 +1,21 @@
+#pragma once
+/// The method of characteristics as exact front tracking in Lagrangian coordinates.
+///
+/// The state is piecewise constant between fronts; every front carries its exact
+/// speed. Fronts, body ends and material interfaces are nodes of a list per piece of
+/// body; the next interaction (two nodes meeting, a gap closing, a piston changing
+/// speed) is taken from a priority queue and resolved by an exact Riemann problem,
+/// which emits the outgoing fronts. For linearly degenerate materials (rigid, hooke,
+/// rigid_fluid) each interaction emits at most one front per family and the result
+/// is exact to round-off; rarefaction fans of genuinely nonlinear materials are
+/// split into steps of Ψ no larger than solver.tolerance.
+
+#include "rigidity/run_result.hpp"
+#include "rigidity/scene.hpp"
+
+namespace rigidity {
+
+/// \throws InadmissibleError, NumericalError
+[[nodiscard]] RunResult solve_characteristics(const Scene& scene);
+
+}  // namespace rigidity

@@ -1,0 +1,108 @@
+#pragma once
+/// Exact Riemann problems of relativistic elasticity in Lagrangian form (SPEC §1).
+///
+/// A state is (rapidity φ, stretch s). Two states meeting at a point resolve into a
+/// left-moving wave (C− family) into the left state, a right-moving wave (C+) into
+/// the right state, and between them a star region of common pressure p* and
+/// rapidity φ* (two star stretches if the materials differ). Along a wave curve:
+///
+///   rarefaction (p* < p_side), and every wave of a linearly degenerate material:
+///       the Riemann invariant of the other family is constant,
+///       J+ = φ + Ψ(s) across a C− wave,  J− = φ − Ψ(s) across a C+ wave;
+///   shock (p* > p_side, genuinely nonlinear material only): the label and momentum
+///       jump conditions. In the shock frame the label flux j = u/s is continuous
+///       (u = γv) and so is (e+p)u² + p, whence
+///           j² = (p* − p) / ((e+p) s² − (e*+p*) s*²),
+///       and the rapidity jump across the shock is asinh(j s) − asinh(j s*).
+///
+/// Contacts that cannot pull (a push-only contact, a fluid that cavitates) are
+/// treated with a minimum pressure: if the sides would need less than that to stay
+/// together, they part, and each side relaxes through its own wave to that pressure.
+
+#include "rigidity/material.hpp"
+#include "rigidity/status.hpp"
+
+namespace rigidity {
+
+/// A uniform state of a bar: rapidity φ = artanh v and stretch s.
+struct State {
+  double rapidity = 0.0;
+  Stretch stretch;
+};
+
+/// Which side of the meeting point a state lies on; the left state is crossed by a
+/// C− (left-moving) wave, the right state by a C+ (right-moving) wave.
+enum class Side { left, right };
+
+/// The star state reached from `state` (on `side`) through one wave of the family
+/// facing the meeting point, at star pressure p.
+struct WaveCurvePoint {
+  double rapidity = 0.0;
+  Stretch stretch;
+  Status status = Status::ok;
+  [[nodiscard]] bool ok() const { return status == Status::ok; }
+};
+
+/// The wave curve through a state: the states one wave can connect it to.
+class WaveCurve {
+ public:
+  WaveCurve(const Material& material, const State& state, Side side);
+  /// The star state at pressure p. out_of_range beyond the material's limits.
+  [[nodiscard]] WaveCurvePoint at_pressure(double p) const;
+  /// True if the wave to star pressure p is a shock (compressive wave of a
+  /// genuinely nonlinear material); false for a rarefaction or a jump of a
+  /// linearly degenerate material.
+  [[nodiscard]] bool is_shock(double p) const { return !material_->linearly_degenerate() && p > pressure_; }
+  [[nodiscard]] double pressure() const { return pressure_; }
+  [[nodiscard]] const Material& material() const { return *material_; }
+  [[nodiscard]] const State& state() const { return state_; }
+  [[nodiscard]] Side side() const { return side_; }
+  /// The Riemann invariant carried across this wave: J+ (left side) or J− (right side).
+  [[nodiscard]] double invariant() const { return invariant_; }
+
+ private:
+  const Material* material_;
+  State state_;
+  Side side_;
+  double pressure_;
+  double psi_;
+  double invariant_;
+};
+
+/// The solution at the meeting point.
+struct RiemannSolution {
+  Status status = Status::ok;   ///< out_of_range: no classical solution (crushed beyond the limit)
+  bool parted = false;          ///< the sides separate (pressure would fall below the minimum)
+  double pressure = 0.0;        ///< p* (the minimum pressure if parted)
+  State left, right;            ///< star states next to the left and the right state
+  double demanded_psi = 0.0;    ///< with out_of_range: the Ψ the solution would need (for messages)
+  double limit_psi = 0.0;       ///< with out_of_range: the material's Ψ_max
+};
+
+/// Two states meeting. min_pressure: -inf for a bonded interface; 0 for a push-only
+/// contact; a fluid's cavitation pressure.
+[[nodiscard]] RiemannSolution solve_riemann(const Material& left_material, const State& left,
+                                            const Material& right_material, const State& right,
+                                            double min_pressure);
+
+/// A state against a wall or piston moving at rapidity `wall_rapidity`; `side` is the
+/// side the material is on (Side::left: the wall is on its right).
+[[nodiscard]] RiemannSolution solve_wall(const Material& material, const State& state, Side side,
+                                         double wall_rapidity, double min_pressure);
+
+/// A state at a free end (p = 0, or the material's cavitation pressure if higher).
+[[nodiscard]] RiemannSolution solve_free_end(const Material& material, const State& state, Side side);
+
+/// Lagrangian speed dX/dt of a characteristic of family `family` (+1 or -1) in a state.
+[[nodiscard]] double characteristic_speed(const Material& material, const State& state, int family);
+/// Lab-frame speed dx/dt of that characteristic.
+[[nodiscard]] double characteristic_lab_speed(const Material& material, const State& state, int family);
+
+/// A shock between an outer state and a star state (same material), family -1 or +1.
+struct ShockSpeeds {
+  double lagrangian = 0.0;  ///< dX/dt
+  double lab = 0.0;         ///< dx/dt
+};
+[[nodiscard]] ShockSpeeds shock_speeds(const Material& material, const State& outer, const State& star, int family);
+
+}  // namespace rigidity

@@ -1,0 +1,304 @@
+#include "rigidity/solvers/riemann.hpp"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_roots.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rigidity {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+/// Stand-in for an infinite rapidity mismatch inside a bracketing root find:
+/// far beyond any physical rapidity difference, small enough for Brent's arithmetic.
+constexpr double kHuge = 1.0e8;
+
+/// γ(1 ± v c) · cosh-free form: cosh φ ± c sinh φ = ((1 ± c) e^φ + (1 ∓ c) e^−φ)/2,
+/// free of cancellation for c → 1 and large |φ|.
+double boost_denominator(double rapidity, double c, int family) {
+  const double ep = std::exp(rapidity), em = std::exp(-rapidity);
+  return family > 0 ? 0.5 * ((1.0 + c) * ep + (1.0 - c) * em) : 0.5 * ((1.0 - c) * ep + (1.0 + c) * em);
+}
+/// sinh φ ± c cosh φ in the same form.
+double boost_numerator(double rapidity, double c, int family) {
+  const double ep = std::exp(rapidity), em = std::exp(-rapidity);
+  return family > 0 ? 0.5 * ((1.0 + c) * ep - (1.0 - c) * em) : 0.5 * ((1.0 - c) * ep - (1.0 + c) * em);
+}
+
+/// j² of the shock jump conditions (header comment); +inf for a linearly degenerate jump.
+double shock_label_flux_squared(const Material& m, Stretch outer, Stretch star) {
+  const double p0 = m.pressure(outer), p1 = m.pressure(star);
+  const double s0 = outer.value(), s1 = star.value();
+  const double denominator = m.enthalpy_density(outer) * s0 * s0 - m.enthalpy_density(star) * s1 * s1;
+  if (denominator == 0.0) return kInf;
+  return (p1 - p0) / denominator;
+}
+
+/// Rapidity change across a shock from `outer` to `star` (positive for a compression).
+double shock_rapidity_jump(const Material& m, Stretch outer, Stretch star) {
+  const double j2 = shock_label_flux_squared(m, outer, star);
+  if (!(j2 > 0.0) || !std::isfinite(j2)) return m.riemann_psi(star) - m.riemann_psi(outer);
+  const double j = std::sqrt(j2);
+  return std::asinh(j * outer.value()) - std::asinh(j * star.value());
+}
+
+/// The star state on a wave curve given the star stretch (rather than pressure).
+WaveCurvePoint point_at_stretch(const WaveCurve& curve, Stretch star) {
+  const Material& m = curve.material();
+  const State& st = curve.state();
+  const double sign = curve.side() == Side::left ? -1.0 : 1.0;
+  double jump;  // |rapidity change| with sign: positive when the star is compressed relative to the side
+  if (!m.linearly_degenerate() && star < st.stretch) {
+    jump = shock_rapidity_jump(m, st.stretch, star);
+  } else {
+    // Invariant of the other family is carried across: Ψ* − Ψ_side.
+    jump = m.riemann_psi(star) - (curve.side() == Side::left ? curve.invariant() - st.rapidity
+                                                              : st.rapidity - curve.invariant());
+  }
+  return WaveCurvePoint{st.rapidity + sign * jump, star, Status::ok};
+}
+
+/// f(z) = φ*_L − φ*_R for a left star stretch z (ln s); increasing in z.
+struct Mismatch {
+  const WaveCurve* left;
+  const WaveCurve* right;
+  double operator()(double z) const {
+    const Stretch star_left = Stretch::from_log(z);
+    const double p = left->material().pressure(star_left);
+    const WaveCurvePoint a = point_at_stretch(*left, star_left);
+    const WaveCurvePoint b = right->at_pressure(p);
+    if (!b.ok()) return p > right->pressure() ? -kHuge : kHuge;
+    return std::clamp(a.rapidity - b.rapidity, -kHuge, kHuge);
+  }
+};
+
+/// Brent's method (GSL) on a bracket with f(lo) < 0 < f(hi); converged to round-off in z.
+template <class F>
+Solved<double> find_root(const F& f, double lo, double hi) {
+  gsl_set_error_handler_off();
+  gsl_function fn{[](double z, void* params) { return (*static_cast<const F*>(params))(z); },
+                  const_cast<F*>(&f)};
+  gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+  if (solver == nullptr) return Solved<double>::failure(Status::not_converged);
+  Solved<double> result = Solved<double>::failure(Status::not_converged);
+  if (gsl_root_fsolver_set(solver, &fn, lo, hi) == GSL_SUCCESS) {
+    for (int iter = 0; iter < 300; ++iter) {
+      if (gsl_root_fsolver_iterate(solver) != GSL_SUCCESS) break;
+      const double a = gsl_root_fsolver_x_lower(solver), b = gsl_root_fsolver_x_upper(solver);
+      const double root = gsl_root_fsolver_root(solver);
+      if (gsl_root_test_interval(a, b, 1.0e-300, 2.0 * std::numeric_limits<double>::epsilon()) == GSL_SUCCESS ||
+          f(root) == 0.0) {
+        result = Solved<double>{root, Status::ok};
+        break;
+      }
+    }
+  }
+  gsl_root_fsolver_free(solver);
+  return result;
+}
+
+/// Expands from `start` in direction `dir` (±1) until f takes the wanted sign
+/// (f < 0 for dir = -1, f > 0 for dir = +1), staying inside [limit_lo, limit_hi].
+template <class F>
+Solved<double> expand_bracket(const F& f, double start, int dir, double limit_lo, double limit_hi) {
+  double step = 0.5;
+  double z = start;
+  for (int i = 0; i < 200; ++i) {
+    z = std::clamp(z + dir * step, limit_lo, limit_hi);
+    const double value = f(z);
+    if ((dir < 0 && value < 0.0) || (dir > 0 && value > 0.0)) return {z, Status::ok};
+    if (z == limit_lo || z == limit_hi) break;
+    step *= 2.0;
+  }
+  return Solved<double>::failure(Status::no_bracket);
+}
+
+RiemannSolution collapse(double demanded_psi, double limit_psi) {
+  RiemannSolution s;
+  s.status = Status::out_of_range;
+  s.demanded_psi = demanded_psi;
+  s.limit_psi = limit_psi;
+  return s;
+}
+
+/// Star pressure on a wave curve whose star stretch is fixed by Ψ (LD waves, rarefactions).
+RiemannSolution parted_pair(const WaveCurve& left, const WaveCurve& right, double min_pressure) {
+  RiemannSolution out;
+  out.parted = true;
+  out.pressure = min_pressure;
+  const WaveCurvePoint a = left.at_pressure(min_pressure);
+  const WaveCurvePoint b = right.at_pressure(min_pressure);
+  out.status = a.ok() && b.ok() ? Status::ok : Status::not_converged;
+  out.left = State{a.rapidity, a.stretch};
+  out.right = State{b.rapidity, b.stretch};
+  return out;
+}
+
+}  // namespace
+
+WaveCurve::WaveCurve(const Material& material, const State& state, Side side)
+    : material_(&material),
+      state_(state),
+      side_(side),
+      pressure_(material.pressure(state.stretch)),
+      psi_(material.riemann_psi(state.stretch)),
+      invariant_(side == Side::left ? state.rapidity + psi_ : state.rapidity - psi_) {}
+
+WaveCurvePoint WaveCurve::at_pressure(double p) const {
+  if (p == pressure_) return WaveCurvePoint{state_.rapidity, state_.stretch, Status::ok};
+  const Solved<Stretch> star = material_->stretch_at_pressure(p);
+  if (!star.ok()) return WaveCurvePoint{0.0, Stretch{}, star.status};
+  return point_at_stretch(*this, star.value);
+}
+
+RiemannSolution solve_riemann(const Material& left_material, const State& left, const Material& right_material,
+                              const State& right, double min_pressure) {
+  const WaveCurve lc(left_material, left, Side::left);
+  const WaveCurve rc(right_material, right, Side::right);
+
+  // One linearly degenerate material on both sides: the star state is closed form,
+  // J+ from the left, J− from the right.
+  if (&left_material == &right_material && left_material.linearly_degenerate()) {
+    const Material& m = left_material;
+    const double psi_star = 0.5 * (lc.invariant() - rc.invariant());
+    const double rapidity_star = 0.5 * (lc.invariant() + rc.invariant());
+    if (psi_star >= m.psi_max()) return collapse(psi_star, m.psi_max());
+    if (min_pressure > -kInf) {
+      const Solved<Stretch> parting = m.stretch_at_pressure(min_pressure);
+      if (parting.ok() && psi_star < m.riemann_psi(parting.value)) return parted_pair(lc, rc, min_pressure);
+    }
+    const Solved<Stretch> star = m.stretch_at_psi(psi_star);
+    if (!star.ok()) return RiemannSolution{star.status, false, 0.0, {}, {}, psi_star, m.psi_max()};
+    RiemannSolution out;
+    out.pressure = m.pressure(star.value);
+    out.left = out.right = State{rapidity_star, star.value};
+    return out;
+  }
+
+  // General: Brent on the left star stretch z = ln s*_L, f(z) = φ*_L − φ*_R increasing.
+  const Mismatch f{&lc, &rc};
+  const StretchRange range = left_material.admissible();
+  double z_hi = range.log_max;
+  if (min_pressure > -kInf) {
+    const Solved<Stretch> parting = left_material.stretch_at_pressure(min_pressure);
+    if (parting.ok()) {
+      z_hi = parting.value.log();
+      if (f(z_hi) < 0.0) return parted_pair(lc, rc, min_pressure);
+      if (f(z_hi) == 0.0) return parted_pair(lc, rc, min_pressure);
+    }
+  }
+  const double start = std::min(left.stretch.log(), z_hi);
+  double lo = start, hi = start;
+  const double f_start = f(start);
+  if (f_start == 0.0) {
+    lo = hi = start;
+  } else if (f_start > 0.0) {
+    hi = start;
+    const Solved<double> b = expand_bracket(f, start, -1, range.log_min, z_hi);
+    if (!b.ok()) {
+      // Even at the largest reachable compression the left state outruns the right.
+      const double psi_needed = left_material.psi_max() + f(range.log_min);
+      return collapse(psi_needed, left_material.psi_max());
+    }
+    lo = b.value;
+  } else {
+    lo = start;
+    const Solved<double> b = expand_bracket(f, start, +1, range.log_min, z_hi);
+    if (!b.ok()) return RiemannSolution{Status::no_bracket, false, 0.0, {}, {}, 0.0, 0.0};
+    hi = b.value;
+  }
+  double z = lo;
+  if (lo != hi) {
+    const Solved<double> root = find_root(f, lo, hi);
+    if (!root.ok()) return RiemannSolution{root.status, false, 0.0, {}, {}, 0.0, 0.0};
+    z = root.value;
+  }
+  const Stretch star_left = Stretch::from_log(z);
+  RiemannSolution out;
+  out.pressure = left_material.pressure(star_left);
+  const WaveCurvePoint a = point_at_stretch(lc, star_left);
+  const WaveCurvePoint b = rc.at_pressure(out.pressure);
+  if (!b.ok()) return RiemannSolution{b.status, false, 0.0, {}, {}, 0.0, 0.0};
+  const double rapidity = 0.5 * (a.rapidity + b.rapidity);
+  out.left = State{rapidity, star_left};
+  out.right = State{rapidity, b.stretch};
+  return out;
+}
+
+RiemannSolution solve_wall(const Material& m, const State& state, Side side, double wall_rapidity,
+                           double min_pressure) {
+  const WaveCurve curve(m, state, side);
+  // Compression if the material moves into the wall.
+  const bool compressive = side == Side::left ? state.rapidity > wall_rapidity : state.rapidity < wall_rapidity;
+  RiemannSolution out;
+  if (m.linearly_degenerate() || !compressive) {
+    // Ψ* from the invariant carried across the wave.
+    const double psi_star = side == Side::left ? curve.invariant() - wall_rapidity : wall_rapidity - curve.invariant();
+    if (psi_star >= m.psi_max()) return collapse(psi_star, m.psi_max());
+    if (min_pressure > -kInf) {
+      const Solved<Stretch> parting = m.stretch_at_pressure(min_pressure);
+      if (parting.ok() && psi_star < m.riemann_psi(parting.value)) return solve_free_end(m, state, side);
+    }
+    const Solved<Stretch> star = m.stretch_at_psi(psi_star);
+    if (!star.ok()) return RiemannSolution{star.status, false, 0.0, {}, {}, psi_star, m.psi_max()};
+    out.pressure = m.pressure(star.value);
+    out.left = out.right = State{wall_rapidity, star.value};
+    return out;
+  }
+  // A shock into a genuinely nonlinear material: solve φ*(z) = φ_wall for the star
+  // stretch z = ln s*, with g increasing in z (less compression, the star keeps more
+  // of the side's motion towards the wall).
+  const auto g = [&curve, wall_rapidity, side](double z) {
+    const WaveCurvePoint pt = point_at_stretch(curve, Stretch::from_log(z));
+    return side == Side::left ? pt.rapidity - wall_rapidity : wall_rapidity - pt.rapidity;
+  };
+  const double z_hi = state.stretch.log();
+  const double log_min = m.admissible().log_min;
+  const Solved<double> lo = expand_bracket(g, z_hi, -1, log_min, z_hi);
+  if (!lo.ok()) return collapse(m.psi_max() + std::abs(g(log_min)), m.psi_max());
+  const Solved<double> root = find_root(g, lo.value, z_hi);
+  if (!root.ok()) return RiemannSolution{root.status, false, 0.0, {}, {}, 0.0, 0.0};
+  const double z = root.value;
+  const Stretch star = Stretch::from_log(z);
+  out.pressure = m.pressure(star);
+  out.left = out.right = State{wall_rapidity, star};
+  return out;
+}
+
+RiemannSolution solve_free_end(const Material& m, const State& state, Side side) {
+  const double p_free = std::max(0.0, m.cavitation_pressure());
+  const WaveCurve curve(m, state, side);
+  RiemannSolution out;
+  out.parted = true;
+  out.pressure = p_free;
+  const WaveCurvePoint pt = curve.at_pressure(p_free);
+  out.status = pt.status;
+  out.left = out.right = State{pt.rapidity, pt.stretch};
+  return out;
+}
+
+double characteristic_speed(const Material& m, const State& state, int family) {
+  const double c = m.sound_speed(state.stretch);
+  return family * c / (state.stretch.value() * boost_denominator(state.rapidity, c, family));
+}
+
+double characteristic_lab_speed(const Material& m, const State& state, int family) {
+  const double c = m.sound_speed(state.stretch);
+  return boost_numerator(state.rapidity, c, family) / boost_denominator(state.rapidity, c, family);
+}
+
+ShockSpeeds shock_speeds(const Material& m, const State& outer, const State& star, int family) {
+  const double j2 = shock_label_flux_squared(m, outer.stretch, star.stretch);
+  if (!(j2 > 0.0) || !std::isfinite(j2)) {
+    // A jump of a linearly degenerate material: the characteristic speed.
+    return ShockSpeeds{characteristic_speed(m, star, family), characteristic_lab_speed(m, star, family)};
+  }
+  const double j = std::sqrt(j2);
+  const double shock_rapidity = outer.rapidity + family * std::asinh(j * outer.stretch.value());
+  return ShockSpeeds{family * j / std::cosh(shock_rapidity), std::tanh(shock_rapidity)};
+}
+
+}  // namespace rigidity
