@@ -28,53 +28,6 @@ double boost_numerator(double rapidity, double c, int family) {
   return family > 0 ? 0.5 * ((1.0 + c) * ep - (1.0 - c) * em) : 0.5 * ((1.0 - c) * ep - (1.0 + c) * em);
 }
 
-/// j² of the shock jump conditions (header comment); +inf for a linearly degenerate jump.
-double shock_label_flux_squared(const Material& m, Stretch outer, Stretch star) {
-  const double p0 = m.pressure(outer), p1 = m.pressure(star);
-  const double s0 = outer.value(), s1 = star.value();
-  const double denominator = m.enthalpy_density(outer) * s0 * s0 - m.enthalpy_density(star) * s1 * s1;
-  if (denominator == 0.0) return kInf;
-  return (p1 - p0) / denominator;
-}
-
-/// Rapidity change across a shock from `outer` to `star` (positive for a compression).
-double shock_rapidity_jump(const Material& m, Stretch outer, Stretch star) {
-  const double j2 = shock_label_flux_squared(m, outer, star);
-  if (!(j2 > 0.0) || !std::isfinite(j2)) return m.riemann_psi(star) - m.riemann_psi(outer);
-  const double j = std::sqrt(j2);
-  return std::asinh(j * outer.value()) - std::asinh(j * star.value());
-}
-
-/// The star state on a wave curve given the star stretch (rather than pressure).
-WaveCurvePoint point_at_stretch(const WaveCurve& curve, Stretch star) {
-  const Material& m = curve.material();
-  const State& st = curve.state();
-  const double sign = curve.side() == Side::left ? -1.0 : 1.0;
-  double jump;  // |rapidity change| with sign: positive when the star is compressed relative to the side
-  if (!m.linearly_degenerate() && star < st.stretch) {
-    jump = shock_rapidity_jump(m, st.stretch, star);
-  } else {
-    // Invariant of the other family is carried across: Ψ* − Ψ_side.
-    jump = m.riemann_psi(star) - (curve.side() == Side::left ? curve.invariant() - st.rapidity
-                                                              : st.rapidity - curve.invariant());
-  }
-  return WaveCurvePoint{st.rapidity + sign * jump, star, Status::ok};
-}
-
-/// f(z) = φ*_L − φ*_R for a left star stretch z (ln s); increasing in z.
-struct Mismatch {
-  const WaveCurve* left;
-  const WaveCurve* right;
-  double operator()(double z) const {
-    const Stretch star_left = Stretch::from_log(z);
-    const double p = left->material().pressure(star_left);
-    const WaveCurvePoint a = point_at_stretch(*left, star_left);
-    const WaveCurvePoint b = right->at_pressure(p);
-    if (!b.ok()) return p > right->pressure() ? -kHuge : kHuge;
-    return std::clamp(a.rapidity - b.rapidity, -kHuge, kHuge);
-  }
-};
-
 /// Brent's method (GSL) on a bracket with f(lo) < 0 < f(hi); converged to round-off in z.
 template <class F>
 Solved<double> find_root(const F& f, double lo, double hi) {
@@ -115,6 +68,69 @@ Solved<double> expand_bracket(const F& f, double start, int dir, double limit_lo
   }
   return Solved<double>::failure(Status::no_bracket);
 }
+
+/// Conserved label density s/γ and momentum density (e+p) s γ v per unit label (SPEC §1).
+double label_density(const State& st) { return st.stretch.value() / std::cosh(st.rapidity); }
+double momentum_density(const Material& m, const State& st) {
+  return m.enthalpy_density(st.stretch) * st.stretch.value() * std::sinh(st.rapidity);
+}
+
+/// The rapidity behind a shock of family `family` (−1: C−, +1: C+) that takes the
+/// outer state to the star stretch. The label and momentum jump conditions in the
+/// lab frame, m [s/γ] = −[v] and m [(e+p) s γ v] = [p], give after eliminating the
+/// Lagrangian speed m
+///     H(φ*) = [v] [(e+p) s γ v] + [p] [s/γ] = 0,
+/// with one root on each side of the outer rapidity; the family picks the side.
+/// H < 0 at φ* = φ_outer for a compression and grows without bound away from it.
+Solved<double> shock_star_rapidity(const Material& m, const State& outer, Stretch star, int family) {
+  const double p_outer = m.pressure(outer.stretch), p_star = m.pressure(star);
+  const double v_outer = std::tanh(outer.rapidity);
+  const double labels_outer = label_density(outer), momentum_outer = momentum_density(m, outer);
+  const auto hugoniot = [&](double rapidity) {
+    const State st{rapidity, star};
+    return (std::tanh(rapidity) - v_outer) * (momentum_density(m, st) - momentum_outer) +
+           (p_star - p_outer) * (label_density(st) - labels_outer);
+  };
+  // Increasing away from the outer rapidity on the family's side: g(d) = H(φ_outer + family d).
+  const auto g = [&](double d) { return hugoniot(outer.rapidity + family * d); };
+  const Solved<double> far = expand_bracket(g, 0.0, +1, 0.0, 1.0e3);
+  if (!far.ok()) return far;
+  const Solved<double> d = find_root(g, 0.0, far.value);
+  if (!d.ok()) return d;
+  return Solved<double>{outer.rapidity + family * d.value, Status::ok};
+}
+
+/// The star state on a wave curve given the star stretch (rather than pressure).
+WaveCurvePoint point_at_stretch(const WaveCurve& curve, Stretch star) {
+  const Material& m = curve.material();
+  const State& st = curve.state();
+  const double sign = curve.side() == Side::left ? -1.0 : 1.0;
+  double jump;  // |rapidity change| with sign: positive when the star is compressed relative to the side
+  if (!m.linearly_degenerate() && star < st.stretch) {
+    const Solved<double> rapidity = shock_star_rapidity(m, st, star, curve.side() == Side::left ? -1 : +1);
+    if (!rapidity.ok()) return WaveCurvePoint{0.0, star, rapidity.status};
+    return WaveCurvePoint{rapidity.value, star, Status::ok};
+  } else {
+    // Invariant of the other family is carried across: Ψ* − Ψ_side.
+    jump = m.riemann_psi(star) - (curve.side() == Side::left ? curve.invariant() - st.rapidity
+                                                              : st.rapidity - curve.invariant());
+  }
+  return WaveCurvePoint{st.rapidity + sign * jump, star, Status::ok};
+}
+
+/// f(z) = φ*_L − φ*_R for a left star stretch z (ln s); increasing in z.
+struct Mismatch {
+  const WaveCurve* left;
+  const WaveCurve* right;
+  double operator()(double z) const {
+    const Stretch star_left = Stretch::from_log(z);
+    const double p = left->material().pressure(star_left);
+    const WaveCurvePoint a = point_at_stretch(*left, star_left);
+    const WaveCurvePoint b = right->at_pressure(p);
+    if (!b.ok()) return p > right->pressure() ? -kHuge : kHuge;
+    return std::clamp(a.rapidity - b.rapidity, -kHuge, kHuge);
+  }
+};
 
 RiemannSolution collapse(double demanded_psi, double limit_psi) {
   RiemannSolution s;
@@ -291,14 +307,13 @@ double characteristic_lab_speed(const Material& m, const State& state, int famil
 }
 
 ShockSpeeds shock_speeds(const Material& m, const State& outer, const State& star, int family) {
-  const double j2 = shock_label_flux_squared(m, outer.stretch, star.stretch);
-  if (!(j2 > 0.0) || !std::isfinite(j2)) {
-    // A jump of a linearly degenerate material: the characteristic speed.
+  if (m.linearly_degenerate()) {
     return ShockSpeeds{characteristic_speed(m, star, family), characteristic_lab_speed(m, star, family)};
   }
-  const double j = std::sqrt(j2);
-  const double shock_rapidity = outer.rapidity + family * std::asinh(j * outer.stretch.value());
-  return ShockSpeeds{family * j / std::cosh(shock_rapidity), std::tanh(shock_rapidity)};
+  // Label jump condition m [s/γ] = −[v]; the lab speed follows from dx = (s/γ) dX + v dt.
+  const double speed = -(std::tanh(star.rapidity) - std::tanh(outer.rapidity)) /
+                       (label_density(star) - label_density(outer));
+  return ShockSpeeds{speed, std::tanh(outer.rapidity) + speed * label_density(outer)};
 }
 
 }  // namespace rigidity

@@ -9,11 +9,12 @@
 ///   rarefaction (p* < p_side), and every wave of a linearly degenerate material:
 ///       the Riemann invariant of the other family is constant,
 ///       J+ = φ + Ψ(s) across a C− wave,  J− = φ − Ψ(s) across a C+ wave;
-///   shock (p* > p_side, genuinely nonlinear material only): the label and momentum
-///       jump conditions. In the shock frame the label flux j = u/s is continuous
-///       (u = γv) and so is (e+p)u² + p, whence
-///           j² = (p* − p) / ((e+p) s² − (e*+p*) s*²),
-///       and the rapidity jump across the shock is asinh(j s) − asinh(j s*).
+///   shock (p* > p_side, genuinely nonlinear material only): the jump conditions
+///       of the label and momentum laws in the lab frame,
+///           m [s/γ] = −[v],   m [(e+p) s γ v] = [p],
+///       m the Lagrangian shock speed dX/dt; energy is not conserved across it
+///       (the loss is the shock's dissipation), so these conditions, like the
+///       dissipation, refer to the lab frame of the scene.
 ///
 /// Contacts that cannot pull (a push-only contact, a fluid that cavitates) are
 /// treated with a minimum pressure: if the sides would need less than that to stay

@@ -1,0 +1,197 @@
+// Bodies meeting bodies: a two-material collision against its exact Riemann
+// solution, spall of the rigid fluid against the rigid solid, and the shock tube
+// of the constant-sound-speed fluid converging as solver.tolerance shrinks.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "rigidity/registry.hpp"
+#include "rigidity/scene_loader.hpp"
+#include "rigidity/solvers/riemann.hpp"
+#include "rigidity/solvers/solve.hpp"
+
+namespace rigidity {
+namespace {
+
+RunResult run_yaml(const std::string& yaml, Scene* scene_out = nullptr) {
+  Scene scene = load_scene_string(yaml, "<test>");
+  RunResult r = solve(scene);
+  if (scene_out != nullptr) *scene_out = std::move(scene);
+  return r;
+}
+
+std::size_t count_events(const RunResult& r, const std::string& kind) {
+  return static_cast<std::size_t>(
+      std::count_if(r.events.begin(), r.events.end(), [&](const RunEvent& e) { return e.kind == kind; }));
+}
+
+TEST(Collision, RigidBarOnHookeBarMatchesTheExactRiemannSolution) {
+  // Rigid (ρ00 = 1) at v = 0.5 across a gap of 0.1 onto hooke (ρ00 = 2, V = 0.5) at rest.
+  const std::string yaml = R"(
+name: two_materials
+materials:
+  solid: {model: rigid, rest_density: 1.0}
+  soft: {model: hooke, rest_density: 2.0, wave_speed: 0.5}
+bodies:
+  - {name: flyer, material: solid, position: 0.0, length: 1.0, velocity: 0.5}
+  - {name: target, material: soft, position: 0.966025403784438, length: 1.0, velocity: 0.0}
+time: {end: 0.8}
+outputs:
+  probes:
+    - {name: face, body: target, at: left, quantities: [p, v], every: 0.01}
+)";
+  const RunResult r = run_yaml(yaml);
+  // Contact when the flyer's front (lab length sqrt(1 − 0.25) = 0.8660...) has crossed the gap 0.1.
+  ASSERT_GE(count_events(r, "contact"), 1u);
+  EXPECT_NEAR(r.events.front().t, 0.1 / 0.5, 1e-12);
+
+  // The exact star state, by bisection on p of φ_L(p) = φ_R(p):
+  //   rigid:  φ = φ_flyer − ½ ln(1 + 2p/ρ)          (J+ carried, Ψ = −ln s, s⁻² = 1 + 2p/ρ)
+  //   hooke:  φ = Ψ_hooke(s(p)),  Ψ = asinh(b/a) − asinh(b s/a), s from e(s)/R − ρ = p.
+  const double rho_a = 1.0, rho_b = 2.0, b = 0.5, a = std::sqrt(1.0 - b * b);
+  const double phi0 = std::atanh(0.5);
+  auto hooke_stretch = [&](double p) {  // invert p(s) by bisection on ln s
+    double lo = -30.0, hi = 0.0;
+    for (int i = 0; i < 200; ++i) {
+      const double mid = 0.5 * (lo + hi), s = std::exp(mid);
+      const double R = std::sqrt(b * b + a * a / (s * s));
+      const double e = rho_b * (R - b * b) / (a * a);
+      (e / R - rho_b > p ? lo : hi) = mid;
+    }
+    return std::exp(0.5 * (lo + hi));
+  };
+  auto mismatch = [&](double p) {
+    const double left = phi0 - 0.5 * std::log1p(2.0 * p / rho_a);
+    const double right = std::asinh(b / a) - std::asinh(b * hooke_stretch(p) / a);
+    return left - right;
+  };
+  double lo = 0.0, hi = rho_b * b * b / (a * a) * (1.0 - 1e-12);
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (mismatch(mid) > 0.0 ? lo : hi) = mid;
+  }
+  const double p_star = 0.5 * (lo + hi);
+  const double v_star = std::tanh(phi0 - 0.5 * std::log1p(2.0 * p_star / rho_a));
+
+  double p_face = 0.0, v_face = 0.0;
+  for (const ProbeSample& s : r.probes) {
+    if (std::abs(s.t - 0.3) > 1e-9) continue;
+    (s.quantity == Quantity::p ? p_face : v_face) = s.value;
+  }
+  EXPECT_NEAR(p_face, p_star, 1e-12 * p_star);
+  EXPECT_NEAR(v_face, v_star, 1e-12 * v_star);
+  // Free bodies: momentum and energy are conserved exactly.
+  const Conservation& c = r.conservation;
+  EXPECT_NEAR(c.momentum_final, c.momentum_initial, 1e-12 * c.momentum_initial);
+  EXPECT_NEAR(c.energy_final, c.energy_initial, 1e-12 * c.energy_initial);
+  EXPECT_EQ(c.wall_impulse, 0.0);
+}
+
+std::string flyer_plate(const std::string& model) {
+  return R"(
+name: flyer_plate
+materials:
+  m: {model: )" + model + R"(}
+bodies:
+  - {name: flyer, material: m, position: 0.0, length: 0.5, velocity: 0.3}
+  - {name: target, material: m, position: 0.5, length: 1.0, velocity: -0.3}
+time: {end: 3.0}
+)";
+}
+
+TEST(Collision, FlyerPlateSpallsInTheRigidFluidButNotInTheRigidSolid) {
+  // Two plates collide head on. The release waves from the free rear faces meet
+  // inside the thick plate and put it in tension: the solid carries it, the
+  // rigid fluid cavitates there and parts.
+  const RunResult solid = run_yaml(flyer_plate("rigid"));
+  const RunResult fluid = run_yaml(flyer_plate("rigid_fluid"));
+  EXPECT_EQ(count_events(solid, "cavitation"), 0u);
+  EXPECT_GE(count_events(fluid, "cavitation"), 1u);
+  bool parted = false;
+  for (const BodyResult& b : fluid.bodies) parted = parted || b.name == "target.2";
+  EXPECT_TRUE(parted);
+  for (const RunResult* r : {&solid, &fluid}) {
+    const Conservation& c = r->conservation;
+    EXPECT_NEAR(c.momentum_final, c.momentum_initial, 1e-12 * std::abs(c.energy_initial));
+    EXPECT_NEAR(c.energy_final, c.energy_initial, 1e-12 * c.energy_initial);
+    EXPECT_EQ(c.energy_dissipated, 0.0);
+  }
+}
+
+// ---- the shock tube of the constant-sound-speed fluid --------------------------------
+
+struct ShockTube {
+  double V = 0.5, T = 0.3, X0 = 0.5;
+  State left{0.0, Stretch::from_value(0.5)}, right{0.0, Stretch::natural()};
+};
+
+/// The exact stretch at label X and time T, from the star state, the exact shock
+/// speed and the self-similar fan (solved here by bisection along J+).
+double exact_stretch(const Material& m, const ShockTube& tube, double X) {
+  const RiemannSolution sol = solve_riemann(m, tube.left, m, tube.right, -1e300);
+  const double xi = (X - tube.X0) / tube.T;
+  const double head = characteristic_speed(m, tube.left, -1);
+  const double tail = characteristic_speed(m, sol.left, -1);
+  const double shock = shock_speeds(m, tube.right, sol.right, +1).lagrangian;
+  if (xi <= head) return tube.left.stretch.value();
+  if (xi >= shock) return tube.right.stretch.value();
+  if (xi >= tail) return sol.left.stretch.value();
+  const double j_plus = tube.left.rapidity + m.riemann_psi(tube.left.stretch);
+  double lo = m.riemann_psi(sol.left.stretch), hi = m.riemann_psi(tube.left.stretch);
+  for (int i = 0; i < 200; ++i) {
+    const double psi = 0.5 * (lo + hi);
+    const State st{j_plus - psi, m.stretch_at_psi(psi).value};
+    // Along the fan the C− speed increases from head (Ψ_L) to tail (Ψ*).
+    (characteristic_speed(m, st, -1) > xi ? lo : hi) = psi;
+  }
+  return m.stretch_at_psi(0.5 * (lo + hi)).value.value();
+}
+
+double shock_tube_error(double tolerance) {
+  char yaml[1024];
+  std::snprintf(yaml, sizeof yaml, R"(
+name: shock_tube
+materials:
+  gas: {model: constant_sound_speed, sound_speed: 0.5}
+bodies:
+  - name: tube
+    material: gas
+    segments:
+      - {length: 0.5, velocity: 0.0, stretch: 0.5}
+      - {length: 0.5, velocity: 0.0, stretch: 1.0}
+boundaries:
+  left: {type: wall}
+  right: {type: wall}
+solver: {tolerance: %.17g}
+time: {end: 0.3}
+outputs:
+  snapshots:
+    - {times: [0.3], quantities: [s], samples: 4001}
+)",
+                tolerance);
+  Scene scene;
+  const RunResult r = run_yaml(yaml, &scene);
+  const Material& m = *scene.materials.at("gas").material;
+  const ShockTube tube;
+  double error = 0.0;
+  int n = 0;
+  for (const SnapshotSample& s : r.snapshots) {
+    error += std::abs(s.value - exact_stretch(m, tube, s.X));
+    ++n;
+  }
+  EXPECT_EQ(n, 4001);
+  return error / n;  // L1 over X in [0, 1]
+}
+
+TEST(ShockTube, ConvergesAtFirstOrderInTheFanStep) {
+  const double e1 = shock_tube_error(0.04), e2 = shock_tube_error(0.02), e3 = shock_tube_error(0.01);
+  EXPECT_LT(e3, 2e-3);
+  EXPECT_GT(std::log2(e1 / e2), 0.8) << e1 << " " << e2;
+  EXPECT_GT(std::log2(e2 / e3), 0.8) << e2 << " " << e3;
+}
+
+}  // namespace
+}  // namespace rigidity
