@@ -1,0 +1,87 @@
+#pragma once
+/// The rigidity command line (SPEC §4):
+///
+///   rigidity run [SCENE.yaml] [--out DIR] [--set key.path=value ...]
+///   rigidity validate SCENE.yaml [--set key.path=value ...]
+///   rigidity materials [NAME] [--json]
+///
+/// Exit status: 0 done, 1 internal failure, 2 invalid input, 3 physically inadmissible.
+/// This header is private to the executable.
+
+#include <iosfwd>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace rigidity {
+
+/// Runs the command line; returns the exit status. Never throws.
+int cli_main(int argc, char** argv);
+
+namespace cli {
+
+/// A failure the command reports as "error: what()" with its own exit status;
+/// a usage error also prints the command's usage line.
+class CommandError : public std::runtime_error {
+ public:
+  CommandError(int exit_status, const std::string& message, bool show_usage = false, std::string command = {})
+      : std::runtime_error(message), exit_status_(exit_status), show_usage_(show_usage), command_(std::move(command)) {}
+  [[nodiscard]] int exit_status() const noexcept { return exit_status_; }
+  [[nodiscard]] bool show_usage() const noexcept { return show_usage_; }
+  /// The command whose usage applies ("" for the top level).
+  [[nodiscard]] const std::string& command() const noexcept { return command_; }
+
+ private:
+  int exit_status_;
+  bool show_usage_;
+  std::string command_;
+};
+
+/// An invalid command line: exit 2 with the usage.
+[[nodiscard]] CommandError usage_error(const std::string& command, const std::string& message);
+
+struct OptionSpec {
+  std::string_view name;  ///< "--out"
+  bool takes_value = false;
+  bool repeatable = false;
+};
+
+/// A command's arguments after parsing.
+struct Arguments {
+  std::vector<std::string> positional;
+  std::vector<std::pair<std::string, std::string>> options;  ///< in order; flags have an empty value
+  bool help = false;
+
+  [[nodiscard]] bool has(std::string_view option) const;
+  /// The value of a non-repeatable option, if given.
+  [[nodiscard]] std::optional<std::string> value(std::string_view option) const;
+  /// Every value of a repeatable option, in order.
+  [[nodiscard]] std::vector<std::string> values(std::string_view option) const;
+};
+
+/// Parses `args` (after the command name) against `options`; `--help`/`-h` is always
+/// accepted, `--` ends the options. \throws CommandError (usage) on an unknown option,
+/// naming the closest one, or a missing value.
+[[nodiscard]] Arguments parse_arguments(const std::string& command, std::span<const std::string> args,
+                                        std::span<const OptionSpec> options);
+
+/// The `--set key.path=value` overrides, checked for their form.
+/// \throws CommandError (usage) on a value without '=' or without a key
+[[nodiscard]] std::vector<std::string> scene_overrides(const Arguments& args, const std::string& command);
+
+/// The usage line(s) of a command ("" → every command).
+[[nodiscard]] std::string usage(std::string_view command);
+/// The full help text of a command ("" → the program).
+[[nodiscard]] std::string help(std::string_view command);
+
+// The commands. Each returns the exit status or throws (mapped to one by cli_main).
+int run_command(std::span<const std::string> args, std::ostream& out);
+int validate_command(std::span<const std::string> args, std::ostream& out);
+int materials_command(std::span<const std::string> args, std::ostream& out);
+
+}  // namespace cli
+}  // namespace rigidity

@@ -1,0 +1,120 @@
+// summary.json (SPEC §5): the run at a glance, in the scene's units.
+#include <string_view>
+
+#include "rigidity/json_writer.hpp"
+#include "rigidity/output.hpp"
+
+namespace rigidity {
+
+namespace {
+
+std::string_view method_name(SolverMethod method) {
+  switch (method) {
+    case SolverMethod::characteristics: return "characteristics";
+    case SolverMethod::finite_volume: return "finite_volume";
+  }
+  return "?";
+}
+
+/// Writes values converted from natural units to the scene's.
+class SummaryWriter {
+ public:
+  explicit SummaryWriter(UnitSystem units) : units_(units) {}
+
+  void member(std::string_view key, double natural_value, Dimension d) {
+    json_.key(key).number(from_natural(natural_value, d, units_));
+  }
+
+  void units() {
+    constexpr std::pair<std::string_view, Dimension> kDimensions[] = {
+        {"time", Dimension::time},
+        {"length", Dimension::length},
+        {"velocity", Dimension::velocity},
+        {"density", Dimension::density},
+        {"pressure", Dimension::pressure},
+        {"energy_per_area", Dimension::energy_per_area},
+        {"momentum_per_area", Dimension::momentum_per_area},
+    };
+    json_.key("units").begin_object();
+    json_.key("system").text(units_ == UnitSystem::si ? "si" : "natural");
+    for (const auto& [key, dimension] : kDimensions) json_.key(key).text(unit_symbol(dimension, units_));
+    json_.end_object();
+  }
+
+  JsonWriter& json() { return json_; }
+
+ private:
+  UnitSystem units_;
+  JsonWriter json_{"summary.json"};
+};
+
+}  // namespace
+
+std::string summary_json(const Scene& scene, const RunResult& result) {
+  SummaryWriter w(scene.units);
+  JsonWriter& json = w.json();
+  json.begin_object();
+  json.key("scene").text(scene.name);
+  json.key("status").text(result.status);
+  w.member("t_end", scene.t_end, Dimension::time);
+
+  json.key("solver").begin_object();
+  json.key("method").text(result.solver.empty() ? method_name(scene.solver.method) : std::string_view(result.solver));
+  for (const auto& [name, value] : result.solver_numbers) json.key(name).number(value);
+  json.end_object();
+
+  json.key("warnings").begin_array();
+  for (const std::string& warning : result.warnings) json.text(warning);
+  json.end_array();
+
+  json.key("events").begin_array();
+  for (const RunEvent& event : result.events) {
+    json.begin_object(JsonLayout::line);
+    w.member("t", event.t, Dimension::time);
+    json.key("kind").text(event.kind);
+    w.member("x", event.x, Dimension::length);
+    json.key("bodies").begin_array();
+    for (const std::string& body : event.bodies) json.text(body);
+    json.end_array();
+    json.end_object();
+  }
+  json.end_array();
+
+  json.key("bodies").begin_array();
+  for (const BodyResult& body : result.bodies) {
+    json.begin_object(JsonLayout::line);
+    json.key("name").text(body.name);
+    w.member("x_left", body.x_left, Dimension::length);
+    w.member("x_right", body.x_right, Dimension::length);
+    w.member("velocity_mean", body.velocity_mean, Dimension::velocity);
+    w.member("momentum", body.momentum, Dimension::momentum_per_area);
+    w.member("energy", body.energy, Dimension::energy_per_area);
+    json.end_object();
+  }
+  json.end_array();
+
+  const Conservation& c = result.conservation;
+  json.key("conservation").begin_object();
+  w.member("energy_initial", c.energy_initial, Dimension::energy_per_area);
+  w.member("energy_final", c.energy_final, Dimension::energy_per_area);
+  w.member("energy_dissipated", c.energy_dissipated, Dimension::energy_per_area);
+  w.member("momentum_initial", c.momentum_initial, Dimension::momentum_per_area);
+  w.member("momentum_final", c.momentum_final, Dimension::momentum_per_area);
+  w.member("wall_impulse", c.wall_impulse, Dimension::momentum_per_area);
+  // Beyond SPEC §5: the energy walls and pistons gave, so that the energy balance
+  // energy_final = energy_initial + wall_work - energy_dissipated can be checked too.
+  w.member("wall_work", c.wall_work, Dimension::energy_per_area);
+  json.end_object();
+
+  json.key("stats").begin_object();
+  json.key("fronts").integer(result.stats.fronts);
+  json.key("interactions").integer(result.stats.interactions);
+  json.key("wall_time_s").number(result.stats.wall_time_s);
+  json.end_object();
+
+  w.units();
+  json.end_object();
+  return json.take();
+}
+
+}  // namespace rigidity

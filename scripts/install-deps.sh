@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs what rigidity needs from Debian's packages, if anything is missing.
+# Needs root (or sudo) only when something has to be installed.
+set -euo pipefail
+
+packages=(build-essential cmake libeigen3-dev libyaml-cpp-dev libgsl-dev libbenchmark-dev libgtest-dev gnuplot-nox)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "rigidity: installing ${missing[*]}" >&2
+as_root=()
+[ "$(id -u)" -eq 0 ] || as_root=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${as_root[@]}" apt-get update -qq
+"${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,0 +1,162 @@
+// The command line: help, version, usage errors and `rigidity materials` (SPEC §4).
+#include <algorithm>
+#include <set>
+#include <string>
+
+#include "../output/mini_json.hpp"
+#include "run_cli.hpp"
+
+namespace rigidity::testing {
+namespace {
+
+TEST_F(CliTest, HelpListsTheCommandsAndExitsZero) {
+  const CliOutcome r = rigidity("--help");
+  EXPECT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "usage"));
+  for (const char* command : {"rigidity run", "rigidity validate", "rigidity materials"})
+    EXPECT_TRUE(contains(r.out, command));
+  EXPECT_FALSE(contains(r.out, "compare"));  // not implemented yet: not advertised
+  EXPECT_FALSE(contains(r.out, "plot"));
+  EXPECT_TRUE(r.err.empty()) << r.err;
+}
+
+TEST_F(CliTest, EachCommandHasItsHelp) {
+  for (const char* command : {"run", "validate", "materials"}) {
+    const CliOutcome r = rigidity(std::string(command) + " --help");
+    EXPECT_EQ(r.exit_status, 0) << command << ": " << r.err;
+    EXPECT_TRUE(contains(r.out, std::string("usage: rigidity ") + command));
+  }
+  EXPECT_TRUE(contains(rigidity("run -h").out, "--out DIR"));
+  EXPECT_TRUE(contains(rigidity("help materials").out, "usage: rigidity materials"));
+}
+
+TEST_F(CliTest, VersionIsPrinted) {
+  const CliOutcome r = rigidity("--version");
+  EXPECT_EQ(r.exit_status, 0);
+  EXPECT_EQ(r.out.rfind("rigidity ", 0), 0u) << r.out;
+  EXPECT_TRUE(std::any_of(r.out.begin(), r.out.end(), [](char c) { return c >= '0' && c <= '9'; })) << r.out;
+}
+
+TEST_F(CliTest, NoCommandIsAUsageError) {
+  const CliOutcome r = rigidity("");
+  EXPECT_EQ(r.exit_status, 2);
+  EXPECT_TRUE(contains(r.err, "usage"));
+  EXPECT_TRUE(r.out.empty());
+}
+
+TEST_F(CliTest, UnknownCommandExitsTwoWithTheClosestMatch) {
+  CliOutcome r = rigidity("rn scene.yaml");
+  EXPECT_EQ(r.exit_status, 2);
+  EXPECT_TRUE(contains(r.err, "unknown command 'rn'"));
+  EXPECT_TRUE(contains(r.err, "did you mean 'run'"));
+  EXPECT_TRUE(contains(r.err, "usage"));
+  EXPECT_TRUE(r.out.empty());
+
+  r = rigidity("materails");
+  EXPECT_EQ(r.exit_status, 2);
+  EXPECT_TRUE(contains(r.err, "did you mean 'materials'"));
+
+  r = rigidity("compare");  // a later issue
+  EXPECT_EQ(r.exit_status, 2);
+}
+
+TEST_F(CliTest, UnknownOptionExitsTwoWithTheClosestMatch) {
+  CliOutcome r = rigidity("run --ot somewhere");
+  EXPECT_EQ(r.exit_status, 2);
+  EXPECT_TRUE(contains(r.err, "unknown option '--ot'"));
+  EXPECT_TRUE(contains(r.err, "did you mean '--out'"));
+  EXPECT_TRUE(contains(r.err, "usage: rigidity run"));
+
+  r = rigidity("materials --jsn");
+  EXPECT_EQ(r.exit_status, 2);
+  EXPECT_TRUE(contains(r.err, "did you mean '--json'"));
+
+  r = rigidity("--verison");
+  EXPECT_EQ(r.exit_status, 2);
+  EXPECT_TRUE(contains(r.err, "did you mean '--version'"));
+}
+
+TEST_F(CliTest, MalformedOptionsExitTwo) {
+  EXPECT_EQ(rigidity("run --out").exit_status, 2);              // missing value
+  EXPECT_EQ(rigidity("run --out a --out b").exit_status, 2);    // given twice
+  EXPECT_EQ(rigidity("materials --json=yes").exit_status, 2);   // a flag with a value
+  EXPECT_EQ(rigidity("run --set velocity").exit_status, 2);     // not key=value
+  EXPECT_EQ(rigidity("run a.yaml b.yaml").exit_status, 2);      // two scenes
+  EXPECT_EQ(rigidity("materials rigid hooke").exit_status, 2);  // two names
+  EXPECT_TRUE(contains(rigidity("run --set velocity").err, "key.path=value"));
+}
+
+// ---- rigidity materials ------------------------------------------------------------
+
+const std::set<std::string> kBuiltInMaterials = {"constant_sound_speed", "hooke", "rigid", "rigid_fluid"};
+
+TEST_F(CliTest, MaterialsJsonListsTheBuiltInMaterials) {
+  const CliOutcome r = rigidity("materials --json");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const mini_json::Value doc = mini_json::parse(r.out);
+  ASSERT_EQ(doc.type, mini_json::Value::Type::array);
+  std::set<std::string> names;
+  for (const mini_json::Value& material : doc.array) {
+    names.insert(material["name"].string);
+    EXPECT_EQ(material.keys(), (std::vector<std::string>{"name", "doc", "parameters", "registered_at"}));
+    EXPECT_FALSE(material["doc"].string.empty()) << material["name"].string;
+    EXPECT_NE(material["registered_at"].string.find(".cpp:"), std::string::npos) << material["registered_at"].string;
+    bool has_rest_density = false;
+    for (const mini_json::Value& p : material["parameters"].array) {
+      EXPECT_EQ(p.keys(), (std::vector<std::string>{"name", "type", "required", "default", "dimension", "units_natural",
+                                                    "units_si", "range", "doc"}));
+      EXPECT_EQ(p["required"].boolean, p["default"].type == mini_json::Value::Type::null) << p["name"].string;
+      if (p["name"].string == "rest_density") {
+        has_rest_density = true;
+        EXPECT_EQ(p["default"].number, 1.0);
+        EXPECT_EQ(p["units_si"].string, "kg/m^3");
+      }
+    }
+    EXPECT_TRUE(has_rest_density) << material["name"].string;
+  }
+  EXPECT_EQ(names, kBuiltInMaterials);
+}
+
+TEST_F(CliTest, MaterialsListsEveryMaterialAsText) {
+  const CliOutcome r = rigidity("materials");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  for (const std::string& name : kBuiltInMaterials) EXPECT_TRUE(contains(r.out, name));
+  EXPECT_TRUE(contains(r.out, "rest_density"));
+  EXPECT_TRUE(contains(r.out, "registered at"));
+}
+
+TEST_F(CliTest, MaterialsHookeShowsItsWaveSpeed) {
+  const CliOutcome r = rigidity("materials hooke");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("hooke\n", 0), 0u) << r.out;
+  EXPECT_TRUE(contains(r.out, "wave_speed"));
+  EXPECT_TRUE(contains(r.out, "required"));
+  EXPECT_TRUE(contains(r.out, "m/s"));  // its SI unit
+  EXPECT_TRUE(contains(r.out, "(0, 1]"));
+
+  const CliOutcome json = rigidity("materials hooke --json");
+  ASSERT_EQ(json.exit_status, 0) << json.err;
+  const mini_json::Value doc = mini_json::parse(json.out);
+  ASSERT_EQ(doc.array.size(), 1u);
+  bool found = false;
+  for (const mini_json::Value& p : doc[0]["parameters"].array) {
+    if (p["name"].string != "wave_speed") continue;
+    found = true;
+    EXPECT_TRUE(p["required"].boolean);
+    EXPECT_EQ(p["dimension"].string, "velocity");
+    EXPECT_EQ(p["units_natural"].string, "c");
+    EXPECT_EQ(p["units_si"].string, "m/s");
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST_F(CliTest, UnknownMaterialExitsTwoWithTheClosestMatch) {
+  const CliOutcome r = rigidity("materials hoke");
+  EXPECT_EQ(r.exit_status, 2);
+  EXPECT_TRUE(contains(r.err, "'hoke'"));
+  EXPECT_TRUE(contains(r.err, "did you mean 'hooke'"));
+  EXPECT_TRUE(r.out.empty());
+}
+
+}  // namespace
+}  // namespace rigidity::testing
