@@ -77,7 +77,8 @@ struct Wall {
   }
 };
 
-enum class EventType : std::uint8_t { resolve, meet, gap, wall_gap, piston };
+/// Events other than nodes meeting (those live in MeetingQueue).
+enum class EventType : std::uint8_t { resolve, gap, wall_gap, piston };
 
 struct Event {
   double t;
@@ -89,6 +90,86 @@ struct Event {
 
 struct EventLater {
   bool operator()(const Event& x, const Event& y) const { return x.t != y.t ? x.t > y.t : x.seq > y.seq; }
+};
+
+/// The next meeting of each node with its right neighbour: a binary min-heap with
+/// one entry per node at most, which knows where each node's entry sits so that a
+/// meeting can be moved or cancelled when a neighbour changes. Front tracking of a
+/// many-segment bar spends most of its time here, so no stale entries are kept.
+class MeetingQueue {
+ public:
+  struct Entry {
+    double t;
+    std::uint64_t seq;
+    int node;
+  };
+
+  [[nodiscard]] bool empty() const { return heap_.empty(); }
+  [[nodiscard]] const Entry& top() const { return heap_.front(); }
+
+  void set(int node, double t, std::uint64_t seq) {
+    if (node >= static_cast<int>(position_.size())) position_.resize(static_cast<std::size_t>(node) + 1, kNone);
+    int i = position_[node];
+    if (i == kNone) {
+      i = static_cast<int>(heap_.size());
+      heap_.push_back(Entry{t, seq, node});
+      position_[node] = i;
+      up(i);
+      return;
+    }
+    const bool earlier = before(Entry{t, seq, node}, heap_[i]);
+    heap_[i] = Entry{t, seq, node};
+    earlier ? up(i) : down(i);
+  }
+
+  void erase(int node) {
+    if (node >= static_cast<int>(position_.size()) || position_[node] == kNone) return;
+    const int i = position_[node];
+    const int last = static_cast<int>(heap_.size()) - 1;
+    position_[node] = kNone;
+    if (i != last) {
+      heap_[i] = heap_[last];
+      position_[heap_[i].node] = i;
+      heap_.pop_back();
+      up(i);
+      down(i);
+    } else {
+      heap_.pop_back();
+    }
+  }
+
+ private:
+  static bool before(const Entry& a, const Entry& b) { return a.t != b.t ? a.t < b.t : a.seq < b.seq; }
+  void place(int i, const Entry& e) {
+    heap_[i] = e;
+    position_[e.node] = i;
+  }
+  void up(int i) {
+    const Entry e = heap_[i];
+    while (i > 0) {
+      const int parent = (i - 1) / 2;
+      if (!before(e, heap_[parent])) break;
+      place(i, heap_[parent]);
+      i = parent;
+    }
+    place(i, e);
+  }
+  void down(int i) {
+    const Entry e = heap_[i];
+    const int n = static_cast<int>(heap_.size());
+    for (;;) {
+      int child = 2 * i + 1;
+      if (child >= n) break;
+      if (child + 1 < n && before(heap_[child + 1], heap_[child])) ++child;
+      if (!before(heap_[child], e)) break;
+      place(i, heap_[child]);
+      i = child;
+    }
+    place(i, e);
+  }
+
+  std::vector<Entry> heap_;
+  std::vector<int> position_;
 };
 
 /// One wave of a Riemann solution, as the states it passes through.
@@ -168,6 +249,7 @@ class Tracker {
       --live_fronts_;
     }
     record_segment(n, t);
+    meetings_.erase(id);
     n.alive = false;
     ++n.version;
     free_nodes_.push_back(id);
@@ -191,8 +273,9 @@ class Tracker {
   // ---- interactions -------------------------------------------------------------------
   void handle(const Event& e);
   void resolve(int seed_left, int seed_right, double t);
+  bool cross_in_place(int a, int b, double t);
   void resolve_group(std::vector<int>& group, double t);
-  WaveStates wave(const Material& m, const State& outer, const State& star, int family);
+  void wave(const Material& m, const State& outer, const State& star, int family, WaveStates& w);
   void emit_fronts(const Material& m, const WaveStates& w, int family, int piece, double t, double X, double x,
                    std::vector<int>& out);
   void reanchor(int id, double t);
@@ -232,7 +315,8 @@ class Tracker {
   std::vector<Piece> pieces_;
   std::vector<int> order_;  ///< pieces in lab order, left to right
   Wall walls_[2];
-  std::priority_queue<Event, std::vector<Event>, EventLater> queue_;
+  std::priority_queue<Event, std::vector<Event>, EventLater> queue_;  ///< rare events: gaps, pistons, t = 0
+  MeetingQueue meetings_;                                              ///< fronts meeting fronts, ends, interfaces
   std::uint64_t seq_ = 0;
   long live_fronts_ = 0;
 
@@ -242,6 +326,7 @@ class Tracker {
 
   // scratch buffers reused by every interaction
   std::vector<int> group_, emitted_left_, emitted_right_, touched_;
+  WaveStates wave_left_, wave_right_;
 };
 
 // =====================================================================================
@@ -330,9 +415,6 @@ void Tracker::collect_sample_times() {
 bool Tracker::valid(const Event& e) const {
   switch (e.type) {
     case EventType::resolve: return nodes_[e.a].alive && nodes_[e.a].version == e.va;
-    case EventType::meet:
-      return nodes_[e.a].alive && nodes_[e.b].alive && nodes_[e.a].version == e.va &&
-             nodes_[e.b].version == e.vb && nodes_[e.a].next == e.b;
     case EventType::gap:
       return nodes_[e.a].alive && nodes_[e.b].alive && nodes_[e.a].version == e.va &&
              nodes_[e.b].version == e.vb && nodes_[e.a].attach == Attach::free &&
@@ -348,14 +430,20 @@ bool Tracker::valid(const Event& e) const {
 void Tracker::schedule_meet(int a) {
   const Node& na = nodes_[a];
   const int b = na.next;
-  if (b == kNone) return;
-  const Node& nb = nodes_[b];
-  const double closing = na.dXdt - nb.dXdt;
-  if (!(closing > 0.0)) return;
-  const double t_ref = std::max(na.t0, nb.t0);
-  const double gap = std::max(0.0, nb.X_at(t_ref) - na.X_at(t_ref));
-  const double t = t_ref + gap / closing;
-  if (t <= scene_.t_end) push(t, EventType::meet, a, b, na.version, nb.version);
+  if (b != kNone) {
+    const Node& nb = nodes_[b];
+    const double closing = na.dXdt - nb.dXdt;
+    if (closing > 0.0) {
+      const double t_ref = std::max(na.t0, nb.t0);
+      const double gap = std::max(0.0, nb.X_at(t_ref) - na.X_at(t_ref));
+      const double t = t_ref + gap / closing;
+      if (t <= scene_.t_end) {
+        meetings_.set(a, t, seq_++);
+        return;
+      }
+    }
+  }
+  meetings_.erase(a);
 }
 
 void Tracker::schedule_gap(int left_piece, int right_piece) {
@@ -408,7 +496,6 @@ void Tracker::handle(const Event& e) {
   const double t = e.t;
   switch (e.type) {
     case EventType::resolve: resolve(e.a, e.a, t); break;
-    case EventType::meet: resolve(e.a, e.b, t); break;
     case EventType::gap: {
       const double x = 0.5 * (nodes_[e.a].x_at(t) + nodes_[e.b].x_at(t));
       set_attach(e.a, Attach::body, e.b, t);
@@ -443,6 +530,63 @@ void Tracker::handle(const Event& e) {
       break;
     }
   }
+}
+
+/// The common interaction of a linearly degenerate material, done in place: a C+
+/// front a meets a C− front b inside one material and nothing else is there. They
+/// leave as a C− front (in a's node) and a C+ front (in b's node) around the closed-form
+/// star state; the outer regions are untouched. Returns false (doing nothing) when
+/// the general resolution is needed.
+bool Tracker::cross_in_place(int a, int b, double t) {
+  Node& na = nodes_[a];
+  Node& nb = nodes_[b];
+  if (na.kind != NodeKind::front || nb.kind != NodeKind::front || na.family != +1 || nb.family != -1) return false;
+  const Node& before = nodes_[na.prev];
+  const Node& after = nodes_[nb.next];
+  const Material* m = before.right.material;
+  if (m != nb.right.material || !m->linearly_degenerate()) return false;
+  const double X = 0.5 * (na.X_at(t) + nb.X_at(t));
+  const double tolerance = 8.0 * kEps * (1.0 + std::abs(X));
+  if (before.X_at(t) >= X - tolerance || after.X_at(t) <= X + tolerance) return false;  // a crowd: resolve in full
+  const State& left = before.right.state;
+  const State& right = nb.right.state;
+  const double j_plus = left.rapidity + m->riemann_psi(left.stretch);
+  const double j_minus = right.rapidity - m->riemann_psi(right.stretch);
+  const double psi_star = 0.5 * (j_plus - j_minus);
+  if (!(psi_star < m->psi_max())) return false;
+  if (m->cavitation_pressure() > -kInf) {
+    const Solved<Stretch> parting = m->stretch_at_pressure(m->cavitation_pressure());
+    if (!parting.ok() || psi_star < m->riemann_psi(parting.value)) return false;
+  }
+  const Solved<Stretch> star_stretch = m->stretch_at_psi(psi_star);
+  if (!star_stretch.ok()) return false;
+  const State star{0.5 * (j_plus + j_minus), star_stretch.value};
+  if (same_state(star, left) || same_state(star, right)) return false;  // a wave vanishes
+
+  ++result_.stats.interactions;
+  result_.stats.fronts += 2;
+  const double x = 0.5 * (na.x_at(t) + nb.x_at(t));
+  record_segment(na, t);
+  record_segment(nb, t);
+  const FrontSpeeds minus = characteristic_speeds(*m, star, -1);
+  const FrontSpeeds plus = characteristic_speeds(*m, star, +1);
+  na.family = -1;
+  na.dXdt = minus.lagrangian;
+  na.dxdt = minus.lab;
+  na.right.state = star;
+  nb.family = +1;
+  nb.dXdt = plus.lagrangian;
+  nb.dxdt = plus.lab;
+  for (Node* n : {&na, &nb}) {
+    n->t0 = t;
+    n->X0 = X;
+    n->x0 = x;
+    ++n->version;
+  }
+  schedule_meet(na.prev);
+  schedule_meet(a);
+  schedule_meet(b);
+  return true;
 }
 
 void Tracker::resolve(int seed_left, int seed_right, double t) {
@@ -486,19 +630,20 @@ void Tracker::resolve(int seed_left, int seed_right, double t) {
   resolve_group(group_, t);
 }
 
-WaveStates Tracker::wave(const Material& m, const State& outer, const State& star, int family) {
-  WaveStates w;
+void Tracker::wave(const Material& m, const State& outer, const State& star, int family, WaveStates& w) {
+  w.states.clear();
+  w.shock = false;
   w.states.push_back(outer);
-  if (same_state(outer, star)) return w;
+  if (same_state(outer, star)) return;
   if (m.linearly_degenerate()) {
     w.states.push_back(star);
-    return w;
+    return;
   }
   const double p_outer = m.pressure(outer.stretch), p_star = m.pressure(star.stretch);
   if (p_star > p_outer) {
     w.shock = true;
     w.states.push_back(star);
-    return w;
+    return;
   }
   // A rarefaction fan: states along the invariant of the other family, in steps of Ψ.
   const double psi_outer = m.riemann_psi(outer.stretch), psi_star = m.riemann_psi(star.stretch);
@@ -518,7 +663,7 @@ WaveStates Tracker::wave(const Material& m, const State& outer, const State& sta
     w.states.push_back(State{family < 0 ? invariant - psi : invariant + psi, s.value});
   }
   w.states.push_back(star);
-  return w;
+  return;
 }
 
 void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, int piece, double t, double X,
@@ -536,15 +681,23 @@ void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, in
     n.x0 = x;
     if (w.shock) {
       n.front_kind = FrontKind::shock;
-      const ShockSpeeds sp = shock_speeds(m, outer, inner, family);
+      const FrontSpeeds sp = shock_speeds(m, outer, inner, family);
       n.dXdt = sp.lagrangian;
       n.dxdt = sp.lab;
     } else {
-      n.front_kind = m.linearly_degenerate() ? FrontKind::contact : FrontKind::rarefaction;
-      // Both sides give the same speed for a linearly degenerate jump; a fan step
-      // moves at the mean of the characteristic speeds on its two sides.
-      n.dXdt = 0.5 * (characteristic_speed(m, outer, family) + characteristic_speed(m, inner, family));
-      n.dxdt = 0.5 * (characteristic_lab_speed(m, outer, family) + characteristic_lab_speed(m, inner, family));
+      if (m.linearly_degenerate()) {
+        // A linearly degenerate jump moves at the characteristic speed, the same on both sides.
+        n.front_kind = FrontKind::contact;
+        const FrontSpeeds sp = characteristic_speeds(m, inner, family);
+        n.dXdt = sp.lagrangian;
+        n.dxdt = sp.lab;
+      } else {
+        // A fan step moves at the mean of the characteristic speeds on its two sides.
+        n.front_kind = FrontKind::rarefaction;
+        const FrontSpeeds a = characteristic_speeds(m, outer, family), b = characteristic_speeds(m, inner, family);
+        n.dXdt = 0.5 * (a.lagrangian + b.lagrangian);
+        n.dxdt = 0.5 * (a.lab + b.lab);
+      }
     }
     out.push_back(id);
     ++live_fronts_;
@@ -733,13 +886,16 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   const double XL = label_in(left_piece), XR = label_in(right_piece);
   emitted_left_.clear();
   emitted_right_.clear();
-  WaveStates wl, wr;
+  WaveStates& wl = wave_left_;
+  WaveStates& wr = wave_right_;
+  wl.states.clear();
+  wr.states.clear();
   if (!left_boundary) {
-    wl = wave(*mL, left_region.state, sol.left, -1);
+    wave(*mL, left_region.state, sol.left, -1, wl);
     emit_fronts(*mL, wl, -1, left_piece, t, XL, x, emitted_left_);
   }
   if (!right_boundary) {
-    wr = wave(*mR, right_region.state, sol.right, +1);
+    wave(*mR, right_region.state, sol.right, +1, wr);
     emit_fronts(*mR, wr, +1, right_piece, t, XR, x, emitted_right_);
   }
 
@@ -828,10 +984,13 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   };
   const int new_piece = parted_inside ? static_cast<int>(pieces_.size()) - 1 : kNone;
   settle(interface);
-  for (int p : {left_piece, right_piece, new_piece}) {
-    if (p == kNone) continue;
-    settle(pieces_[p].left_end);
-    settle(pieces_[p].right_end);
+  if (left_boundary) settle(first);
+  if (right_boundary) settle(last);
+  settle(contact_left);
+  settle(contact_right);
+  if (parted_inside) {
+    settle(pieces_[left_piece].right_end);
+    settle(pieces_[new_piece].left_end);
   }
 
   // New meetings: each node of the rebuilt stretch with its right neighbour.
@@ -990,16 +1149,26 @@ RunResult Tracker::run() {
   std::size_t next_sample = 0;
   for (;;) {
     while (!queue_.empty() && !valid(queue_.top())) queue_.pop();
-    const double t_event = queue_.empty() ? kInf : queue_.top().t;
+    // The earliest of the next rare event and the next meeting (ties in the order scheduled).
+    const bool rare_first =
+        !queue_.empty() && (meetings_.empty() || queue_.top().t < meetings_.top().t ||
+                            (queue_.top().t == meetings_.top().t && queue_.top().seq < meetings_.top().seq));
+    const double t_event = rare_first ? queue_.top().t : meetings_.empty() ? kInf : meetings_.top().t;
     const double t_sample = next_sample < samples_.size() ? samples_[next_sample].t : kInf;
     if (t_sample < t_event) {
       sample(samples_[next_sample++]);
       continue;
     }
-    if (queue_.empty() || t_event > scene_.t_end) break;
-    const Event e = queue_.top();
-    queue_.pop();
-    handle(e);
+    if (t_event > scene_.t_end) break;
+    if (rare_first) {
+      const Event e = queue_.top();
+      queue_.pop();
+      handle(e);
+    } else {
+      const MeetingQueue::Entry m = meetings_.top();
+      meetings_.erase(m.node);
+      if (!cross_in_place(m.node, nodes_[m.node].next, m.t)) resolve(m.node, nodes_[m.node].next, m.t);
+    }
   }
   const double t_end = scene_.t_end;
   for (; next_sample < samples_.size(); ++next_sample) sample(samples_[next_sample]);

@@ -16,18 +16,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// far beyond any physical rapidity difference, small enough for Brent's arithmetic.
 constexpr double kHuge = 1.0e8;
 
-/// γ(1 ± v c) · cosh-free form: cosh φ ± c sinh φ = ((1 ± c) e^φ + (1 ∓ c) e^−φ)/2,
-/// free of cancellation for c → 1 and large |φ|.
-double boost_denominator(double rapidity, double c, int family) {
-  const double ep = std::exp(rapidity), em = std::exp(-rapidity);
-  return family > 0 ? 0.5 * ((1.0 + c) * ep + (1.0 - c) * em) : 0.5 * ((1.0 - c) * ep + (1.0 + c) * em);
-}
-/// sinh φ ± c cosh φ in the same form.
-double boost_numerator(double rapidity, double c, int family) {
-  const double ep = std::exp(rapidity), em = std::exp(-rapidity);
-  return family > 0 ? 0.5 * ((1.0 + c) * ep - (1.0 - c) * em) : 0.5 * ((1.0 - c) * ep - (1.0 + c) * em);
-}
-
 /// Brent's method (GSL) on a bracket with f(lo) < 0 < f(hi); converged to round-off in z.
 template <class F>
 Solved<double> find_root(const F& f, double lo, double hi) {
@@ -172,19 +160,20 @@ WaveCurvePoint WaveCurve::at_pressure(double p) const {
 
 RiemannSolution solve_riemann(const Material& left_material, const State& left, const Material& right_material,
                               const State& right, double min_pressure) {
-  const WaveCurve lc(left_material, left, Side::left);
-  const WaveCurve rc(right_material, right, Side::right);
-
   // One linearly degenerate material on both sides: the star state is closed form,
   // J+ from the left, J− from the right.
   if (&left_material == &right_material && left_material.linearly_degenerate()) {
     const Material& m = left_material;
-    const double psi_star = 0.5 * (lc.invariant() - rc.invariant());
-    const double rapidity_star = 0.5 * (lc.invariant() + rc.invariant());
+    const double j_plus = left.rapidity + m.riemann_psi(left.stretch);
+    const double j_minus = right.rapidity - m.riemann_psi(right.stretch);
+    const double psi_star = 0.5 * (j_plus - j_minus);
+    const double rapidity_star = 0.5 * (j_plus + j_minus);
     if (psi_star >= m.psi_max()) return collapse(psi_star, m.psi_max());
     if (min_pressure > -kInf) {
       const Solved<Stretch> parting = m.stretch_at_pressure(min_pressure);
-      if (parting.ok() && psi_star < m.riemann_psi(parting.value)) return parted_pair(lc, rc, min_pressure);
+      if (parting.ok() && psi_star < m.riemann_psi(parting.value)) {
+        return parted_pair(WaveCurve(m, left, Side::left), WaveCurve(m, right, Side::right), min_pressure);
+      }
     }
     const Solved<Stretch> star = m.stretch_at_psi(psi_star);
     if (!star.ok()) return RiemannSolution{star.status, false, 0.0, {}, {}, psi_star, m.psi_max()};
@@ -194,6 +183,8 @@ RiemannSolution solve_riemann(const Material& left_material, const State& left, 
     return out;
   }
 
+  const WaveCurve lc(left_material, left, Side::left);
+  const WaveCurve rc(right_material, right, Side::right);
   // General: Brent on the left star stretch z = ln s*_L, f(z) = φ*_L − φ*_R increasing.
   const Mismatch f{&lc, &rc};
   const StretchRange range = left_material.admissible();
@@ -296,24 +287,38 @@ RiemannSolution solve_free_end(const Material& m, const State& state, Side side)
   return out;
 }
 
-double characteristic_speed(const Material& m, const State& state, int family) {
+FrontSpeeds characteristic_speeds(const Material& m, const State& state, int family) {
   const double c = m.sound_speed(state.stretch);
-  return family * c / (state.stretch.value() * boost_denominator(state.rapidity, c, family));
+  if (c == 1.0) {
+    // Signals at light speed: dX/dt = ± e^∓φ / s, dx/dt = ±1 exactly.
+    return FrontSpeeds{family * std::exp(-family * state.rapidity - state.stretch.log()), static_cast<double>(family)};
+  }
+  // cosh φ ± c sinh φ = ((1 ± c) e^φ + (1 ∓ c) e^−φ)/2 and sinh φ ± c cosh φ likewise:
+  // free of cancellation for c → 1 and large |φ| (for c = 1 exactly e^±φ).
+  const double ep = std::exp(state.rapidity), em = 1.0 / ep;
+  const double a = family > 0 ? 1.0 + c : 1.0 - c;
+  const double b = family > 0 ? 1.0 - c : 1.0 + c;
+  const double denominator = 0.5 * (a * ep + b * em);
+  const double numerator = 0.5 * (a * ep - b * em);
+  return FrontSpeeds{family * c / (state.stretch.value() * denominator), numerator / denominator};
+}
+
+double characteristic_speed(const Material& m, const State& state, int family) {
+  return characteristic_speeds(m, state, family).lagrangian;
 }
 
 double characteristic_lab_speed(const Material& m, const State& state, int family) {
-  const double c = m.sound_speed(state.stretch);
-  return boost_numerator(state.rapidity, c, family) / boost_denominator(state.rapidity, c, family);
+  return characteristic_speeds(m, state, family).lab;
 }
 
-ShockSpeeds shock_speeds(const Material& m, const State& outer, const State& star, int family) {
+FrontSpeeds shock_speeds(const Material& m, const State& outer, const State& star, int family) {
   if (m.linearly_degenerate()) {
-    return ShockSpeeds{characteristic_speed(m, star, family), characteristic_lab_speed(m, star, family)};
+    return characteristic_speeds(m, star, family);
   }
   // Label jump condition m [s/γ] = −[v]; the lab speed follows from dx = (s/γ) dX + v dt.
   const double speed = -(std::tanh(star.rapidity) - std::tanh(outer.rapidity)) /
                        (label_density(star) - label_density(outer));
-  return ShockSpeeds{speed, std::tanh(outer.rapidity) + speed * label_density(outer)};
+  return FrontSpeeds{speed, std::tanh(outer.rapidity) + speed * label_density(outer)};
 }
 
 }  // namespace rigidity

@@ -80,10 +80,10 @@ TEST(Riemann, ShocksOfTheConstantSoundSpeedFluidSatisfyTheJumpConditionsAndDissi
   ASSERT_TRUE(sol.status == Status::ok);
   ASSERT_GT(sol.pressure, 0.0);
   EXPECT_NEAR(sol.left.rapidity, 0.0, 1e-14);
-  const ShockSpeeds sl = shock_speeds(*m, left, sol.left, -1);
+  const FrontSpeeds sl = shock_speeds(*m, left, sol.left, -1);
   EXPECT_LT(sl.lagrangian, 0.0);
   expect_jump_conditions(*m, left, sol.left, sl.lagrangian, 1e-12);
-  const ShockSpeeds sr = shock_speeds(*m, right, sol.right, +1);
+  const FrontSpeeds sr = shock_speeds(*m, right, sol.right, +1);
   expect_jump_conditions(*m, sol.right, right, sr.lagrangian, 1e-12);
   // Lax: the shock is faster than the characteristics ahead, slower than behind.
   EXPECT_LT(sl.lagrangian, characteristic_speed(*m, left, -1));

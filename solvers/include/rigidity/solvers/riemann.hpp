@@ -94,16 +94,21 @@ struct RiemannSolution {
 /// A state at a free end (p = 0, or the material's cavitation pressure if higher).
 [[nodiscard]] RiemannSolution solve_free_end(const Material& material, const State& state, Side side);
 
+/// Speeds of a front or characteristic.
+struct FrontSpeeds {
+  double lagrangian = 0.0;  ///< dX/dt
+  double lab = 0.0;         ///< dx/dt
+};
+
+/// Both speeds of the characteristic of family `family` (+1 or -1) in a state:
+/// dX/dt = ± c_s / (s γ (1 ± v c_s)),  dx/dt = (v ± c_s)/(1 ± v c_s).
+[[nodiscard]] FrontSpeeds characteristic_speeds(const Material& material, const State& state, int family);
 /// Lagrangian speed dX/dt of a characteristic of family `family` (+1 or -1) in a state.
 [[nodiscard]] double characteristic_speed(const Material& material, const State& state, int family);
 /// Lab-frame speed dx/dt of that characteristic.
 [[nodiscard]] double characteristic_lab_speed(const Material& material, const State& state, int family);
 
 /// A shock between an outer state and a star state (same material), family -1 or +1.
-struct ShockSpeeds {
-  double lagrangian = 0.0;  ///< dX/dt
-  double lab = 0.0;         ///< dx/dt
-};
-[[nodiscard]] ShockSpeeds shock_speeds(const Material& material, const State& outer, const State& star, int family);
+[[nodiscard]] FrontSpeeds shock_speeds(const Material& material, const State& outer, const State& star, int family);
 
 }  // namespace rigidity
