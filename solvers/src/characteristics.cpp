@@ -1012,7 +1012,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
 
 void Tracker::record_segment(Node& n, double t) {
   if (!want_fronts_) return;
-  if (t <= n.t0 && n.kind == NodeKind::front) return;
+  if (t <= n.t0) return;  // nothing travelled
   result_.fronts.push_back(FrontSegment{n.t0, n.x0, t, n.x_at(t), n.front_kind, n.family});
 }
 
