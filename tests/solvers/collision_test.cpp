@@ -12,6 +12,7 @@
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/riemann.hpp"
 #include "rigidity/solvers/solve.hpp"
+#include "two_material_exact.hpp"
 
 namespace rigidity {
 namespace {
@@ -48,33 +49,8 @@ outputs:
   ASSERT_GE(count_events(r, "contact"), 1u);
   EXPECT_NEAR(r.events.front().t, 0.1 / 0.5, 1e-12);
 
-  // The exact star state, by bisection on p of φ_L(p) = φ_R(p):
-  //   rigid:  φ = φ_flyer − ½ ln(1 + 2p/ρ)          (J+ carried, Ψ = −ln s, s⁻² = 1 + 2p/ρ)
-  //   hooke:  φ = Ψ_hooke(s(p)),  Ψ = asinh(b/a) − asinh(b s/a), s from e(s)/R − ρ = p.
-  const double rho_a = 1.0, rho_b = 2.0, b = 0.5, a = std::sqrt(1.0 - b * b);
-  const double phi0 = std::atanh(0.5);
-  auto hooke_stretch = [&](double p) {  // invert p(s) by bisection on ln s
-    double lo = -30.0, hi = 0.0;
-    for (int i = 0; i < 200; ++i) {
-      const double mid = 0.5 * (lo + hi), s = std::exp(mid);
-      const double R = std::sqrt(b * b + a * a / (s * s));
-      const double e = rho_b * (R - b * b) / (a * a);
-      (e / R - rho_b > p ? lo : hi) = mid;
-    }
-    return std::exp(0.5 * (lo + hi));
-  };
-  auto mismatch = [&](double p) {
-    const double left = phi0 - 0.5 * std::log1p(2.0 * p / rho_a);
-    const double right = std::asinh(b / a) - std::asinh(b * hooke_stretch(p) / a);
-    return left - right;
-  };
-  double lo = 0.0, hi = rho_b * b * b / (a * a) * (1.0 - 1e-12);
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (mismatch(mid) > 0.0 ? lo : hi) = mid;
-  }
-  const double p_star = 0.5 * (lo + hi);
-  const double v_star = std::tanh(phi0 - 0.5 * std::log1p(2.0 * p_star / rho_a));
+  const ExactStar exact = rigid_on_hooke_star(1.0, std::atanh(0.5), 2.0, 0.5);
+  const double p_star = exact.pressure, v_star = exact.velocity;
 
   double p_face = 0.0, v_face = 0.0;
   for (const ProbeSample& s : r.probes) {
