@@ -743,12 +743,18 @@ void Tracker::flush_wall(int side, double t) {
 void Tracker::inadmissible(const RiemannSolution& sol, const Material& m, double t, double x) const {
   std::ostringstream os;
   os.precision(12);
-  os << "no classical solution at t = " << t << ", x = " << x << ": the material '" << m.model()
-     << "' would be crushed to zero length. The impact demands Riemann invariant Psi = " << sol.demanded_psi
-     << " beyond the material's limit Psi_max = " << sol.limit_psi << ": an impact speed v = tanh(Psi) = "
-     << std::tanh(sol.demanded_psi) << " (relative to the compressed material) at or above its limit "
-     << std::tanh(sol.limit_psi);
-  if (m.model() == "hooke") os << ", the wave speed V = " << std::tanh(sol.limit_psi);
+  os << "no classical solution at t = " << t << ", x = " << x << ": an impact at relative speed "
+     << std::tanh(sol.impact_rapidity) << " c would crush the material '" << m.model() << "' to zero length";
+  if (std::isfinite(sol.demanded_psi)) {
+    // Linearly degenerate: the compressed state would need Ψ = demanded ≥ Ψ_max; tanh Ψ is
+    // the impact speed relative to the compressed material (the wall's frame for a wall).
+    os << ": it demands an impact speed v = tanh(Psi) = " << std::tanh(sol.demanded_psi)
+       << " c relative to the compressed material, at or above the material's limit " << std::tanh(sol.limit_psi)
+       << " c";
+  } else {
+    os << " (its limit: impact speed " << std::tanh(sol.limit_psi) << " c relative to the compressed material)";
+  }
+  if (m.model() == "hooke") os << "; for hooke the limit is the wave speed V = " << std::tanh(sol.limit_psi) << " c";
   throw InadmissibleError(os.str());
 }
 

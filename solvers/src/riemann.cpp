@@ -120,11 +120,12 @@ struct Mismatch {
   }
 };
 
-RiemannSolution collapse(double demanded_psi, double limit_psi) {
+RiemannSolution collapse(double demanded_psi, double limit_psi, double impact_rapidity) {
   RiemannSolution s;
   s.status = Status::out_of_range;
   s.demanded_psi = demanded_psi;
   s.limit_psi = limit_psi;
+  s.impact_rapidity = impact_rapidity;
   return s;
 }
 
@@ -168,7 +169,7 @@ RiemannSolution solve_riemann(const Material& left_material, const State& left, 
     const double j_minus = right.rapidity - m.riemann_psi(right.stretch);
     const double psi_star = 0.5 * (j_plus - j_minus);
     const double rapidity_star = 0.5 * (j_plus + j_minus);
-    if (psi_star >= m.psi_max()) return collapse(psi_star, m.psi_max());
+    if (psi_star >= m.psi_max()) return collapse(psi_star, m.psi_max(), left.rapidity - right.rapidity);
     if (min_pressure > -kInf) {
       const Solved<Stretch> parting = m.stretch_at_pressure(min_pressure);
       if (parting.ok() && psi_star < m.riemann_psi(parting.value)) {
@@ -207,8 +208,8 @@ RiemannSolution solve_riemann(const Material& left_material, const State& left, 
     const Solved<double> b = expand_bracket(f, start, -1, range.log_min, z_hi);
     if (!b.ok()) {
       // Even at the largest reachable compression the left state outruns the right.
-      const double psi_needed = left_material.psi_max() + f(range.log_min);
-      return collapse(psi_needed, left_material.psi_max());
+      const Material& weaker = left_material.psi_max() <= right_material.psi_max() ? left_material : right_material;
+      return collapse(std::numeric_limits<double>::quiet_NaN(), weaker.psi_max(), left.rapidity - right.rapidity);
     }
     lo = b.value;
   } else {
@@ -244,7 +245,8 @@ RiemannSolution solve_wall(const Material& m, const State& state, Side side, dou
   if (m.linearly_degenerate() || !compressive) {
     // Ψ* from the invariant carried across the wave.
     const double psi_star = side == Side::left ? curve.invariant() - wall_rapidity : wall_rapidity - curve.invariant();
-    if (psi_star >= m.psi_max()) return collapse(psi_star, m.psi_max());
+    const double impact = side == Side::left ? state.rapidity - wall_rapidity : wall_rapidity - state.rapidity;
+    if (psi_star >= m.psi_max()) return collapse(psi_star, m.psi_max(), impact);
     if (min_pressure > -kInf) {
       const Solved<Stretch> parting = m.stretch_at_pressure(min_pressure);
       if (parting.ok() && psi_star < m.riemann_psi(parting.value)) return solve_free_end(m, state, side);
@@ -265,7 +267,10 @@ RiemannSolution solve_wall(const Material& m, const State& state, Side side, dou
   const double z_hi = state.stretch.log();
   const double log_min = m.admissible().log_min;
   const Solved<double> lo = expand_bracket(g, z_hi, -1, log_min, z_hi);
-  if (!lo.ok()) return collapse(m.psi_max() + std::abs(g(log_min)), m.psi_max());
+  if (!lo.ok()) {
+    const double impact = side == Side::left ? state.rapidity - wall_rapidity : wall_rapidity - state.rapidity;
+    return collapse(std::numeric_limits<double>::quiet_NaN(), m.psi_max(), impact);
+  }
   const Solved<double> root = find_root(g, lo.value, z_hi);
   if (!root.ok()) return RiemannSolution{root.status, false, 0.0, {}, {}, 0.0, 0.0};
   const double z = root.value;

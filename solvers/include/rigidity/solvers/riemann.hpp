@@ -76,8 +76,9 @@ struct RiemannSolution {
   bool parted = false;          ///< the sides separate (pressure would fall below the minimum)
   double pressure = 0.0;        ///< p* (the minimum pressure if parted)
   State left, right;            ///< star states next to the left and the right state
-  double demanded_psi = 0.0;    ///< with out_of_range: the Ψ the solution would need (for messages)
+  double demanded_psi = 0.0;    ///< with out_of_range: the Ψ a linearly degenerate solution would need (NaN if not known)
   double limit_psi = 0.0;       ///< with out_of_range: the material's Ψ_max
+  double impact_rapidity = 0.0; ///< with out_of_range: rapidity of the left state relative to the right (or the wall)
 };
 
 /// Two states meeting. min_pressure: -inf for a bonded interface; 0 for a push-only
