@@ -63,6 +63,9 @@ class ConstantSoundSpeed final : public Material {
     return rest_density() * v_ * v_ / k_ * std::expm1(-k_ * s.log());
   }
 
+  /// e + p = ρ00 s^{−k}.
+  [[nodiscard]] double enthalpy_density(Stretch s) const override { return rest_density() * std::exp(-k_ * s.log()); }
+
   /// e = ρ00 (s^{−k} + V²)/k: as ρ00 (1 + (s^{−k} − 1)/k) in compression, and in tension as
   /// (e + p) − p with e + p = ρ00 s^{−k}, so that e + p never rounds below 0.
   [[nodiscard]] double energy_density(Stretch s) const override {

@@ -83,6 +83,9 @@ class Hooke final : public Material {
     return rest_density() * (1.0 - two_sinh(t) / (q_of(t) + std::exp(t)));
   }
 
+  /// e + p = ρ00/(s² R): from e(1 + 1/R) − ρ00 with R² − b² = a²/s².
+  [[nodiscard]] double enthalpy_density(Stretch s) const override { return tension_enthalpy(s.log()); }
+
   /// c_s = b/R = b s/sqrt(b²s² + a²) (SPEC §2).
   [[nodiscard]] double sound_speed(Stretch s) const override { return b_ / r_of(s.log()); }
 

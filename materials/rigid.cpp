@@ -42,6 +42,9 @@ class Rigid final : public Material {
   [[nodiscard]] double pressure(Stretch s) const override { return 0.5 * rest_density() * std::expm1(-2.0 * s.log()); }
 
   /// e = (ρ00/2)(1/s² + 1) = ρ00 (1 + (1/s² − 1)/2): paper eq. (24), SPEC §2.
+  /// e + p = ρ00/s²: exact where e and p nearly cancel (far tension).
+  [[nodiscard]] double enthalpy_density(Stretch s) const override { return rest_density() * std::exp(-2.0 * s.log()); }
+
   [[nodiscard]] double energy_density(Stretch s) const override {
     return rest_density() * (1.0 + 0.5 * std::expm1(-2.0 * s.log()));
   }

@@ -40,6 +40,9 @@ class RigidFluid final : public Material {
   [[nodiscard]] double pressure(Stretch s) const override { return 0.5 * rest_density() * std::expm1(-2.0 * s.log()); }
 
   /// e = ρ00 + p: the law itself (paper footnote 4, SPEC §2).
+  /// e + p = ρ00/s².
+  [[nodiscard]] double enthalpy_density(Stretch s) const override { return rest_density() * std::exp(-2.0 * s.log()); }
+
   [[nodiscard]] double energy_density(Stretch s) const override { return rest_density() + pressure(s); }
 
   /// c_s² = dp/de = 1.

@@ -55,8 +55,9 @@ class Material {
   [[nodiscard]] virtual double energy_density(Stretch s) const = 0;
   /// ρ = e/c²: rest-frame density, equal to e in natural units.
   [[nodiscard]] double density(Stretch s) const { return energy_density(s); }
-  /// e + p
-  [[nodiscard]] double enthalpy_density(Stretch s) const { return energy_density(s) + pressure(s); }
+  /// e + p, the inertia of stress; override with a closed form where e + p is much
+  /// smaller than e (far tension), so that it keeps relative precision.
+  [[nodiscard]] virtual double enthalpy_density(Stretch s) const { return energy_density(s) + pressure(s); }
   /// c_s = sqrt(dp/de). \post 0 < c_s <= 1
   [[nodiscard]] virtual double sound_speed(Stretch s) const = 0;
   /// W''(s) = -dp/ds = c_s² (e + p)/s. \post > 0
