@@ -1,0 +1,86 @@
+#pragma once
+// The schema walker: checks a YAML tree against a schema::Key and returns the checked
+// values (natural units, defaults filled in), from which the loader builds the Scene
+// and resolved_scene.yaml is written. Internal to the scene loader.
+
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rigidity/scene_schema.hpp"
+#include "rigidity/units.hpp"
+#include "scene_input.hpp"
+
+namespace rigidity::detail {
+
+/// A value that passed its key's rules.
+struct Checked {
+  std::string name;  ///< the key, or the list index
+  Path path;
+  schema::Kind kind = schema::Kind::map;
+  Dimension dimension = Dimension::dimensionless;
+  YAML::Mark mark;               ///< of the value; for a default, of the enclosing map
+  YAML::Mark key_mark;           ///< of the key (map entries); else the value's
+  bool given = true;             ///< false: a default (fixed or derived)
+  bool awaiting = false;         ///< a default the loader derives, not yet put()
+  double number = 0.0;           ///< number, integer: natural units
+  double as_written = 0.0;       ///< number, integer: in the scene's units
+  std::string word;              ///< text, choice, or the word given instead of a number (`at: left`)
+  bool flag = false;             ///< boolean
+  std::vector<Checked> entries;  ///< list, tuple: the items; map, dictionary: the fields
+
+  [[nodiscard]] const Checked* find(std::string_view key) const;
+  [[nodiscard]] bool has(std::string_view key) const { return find(key) != nullptr; }
+  /// The field `key`, which the schema guarantees. \throws std::logic_error if absent
+  [[nodiscard]] const Checked& operator[](std::string_view key) const;
+  [[nodiscard]] Checked& operator[](std::string_view key);
+  [[nodiscard]] bool is_word() const { return !word.empty(); }
+  /// Fills in a default the loader derives (replacing the field of that name in place).
+  void put(Checked field);
+};
+
+class Checker {
+ public:
+  Checker(const Sources& sources, UnitSystem units) : sources_(sources), units_(units) {}
+
+  /// Checks `node` (the value at `path`, whose key sits at `key_mark`) against `key`. \throws InputError
+  [[nodiscard]] Checked check(const YAML::Node& node, const schema::Key& key, const Path& path,
+                              const YAML::Mark& key_mark);
+
+  /// A value derived by the loader, in natural units, as a default field of `parent`.
+  [[nodiscard]] Checked derived_number(const Checked& parent, const std::string& name, double natural,
+                                       Dimension dimension) const;
+  [[nodiscard]] Checked derived_text(const Checked& parent, const std::string& name, std::string text) const;
+
+  /// \throws InputError at the value `at` (or at its key).
+  [[noreturn]] void fail(const Checked& at, const std::string& message, bool at_key = false) const;
+
+ private:
+  struct Entry {
+    std::string name;
+    YAML::Node key;
+    YAML::Node value;
+  };
+
+  Checked check_scalar(const YAML::Node& node, const schema::Key& key, Checked out) const;
+  Checked check_number(const YAML::Node& node, const schema::Key& key, Checked out) const;
+  Checked check_list(const YAML::Node& node, const schema::Key& key, Checked out);
+  Checked check_map(const YAML::Node& node, const schema::Key& key, Checked out);
+  Checked check_dictionary(const YAML::Node& node, const schema::Key& key, Checked out);
+  /// The value of an absent key that is neither required nor derived: its default.
+  Checked absent(const schema::Key& key, const Checked& parent);
+
+  [[nodiscard]] std::vector<Entry> entries_of(const YAML::Node& map, const Path& path) const;
+  [[noreturn]] void wrong_type(const YAML::Node& node, const Checked& at, const std::string& expected) const;
+
+  const Sources& sources_;
+  UnitSystem units_;
+  std::size_t visited_ = 0;
+};
+
+/// resolved_scene.yaml: the checked scene, every default filled in, in the scene's units.
+[[nodiscard]] std::string emit_resolved(const Checked& scene, UnitSystem units);
+
+}  // namespace rigidity::detail

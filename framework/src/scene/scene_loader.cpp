@@ -1,0 +1,362 @@
+// The strict scene loader (SPEC §3): text → YAML tree (scene_input) → values checked
+// against the schema (scene_checker, scene_schema) → the Scene, after the rules that
+// relate keys to each other (this file): references between names, bodies in order
+// and not overlapping, walls outside the bodies, admissible initial states, outputs
+// within the bodies and the time span.
+
+#include "rigidity/scene_loader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+
+#include "rigidity/default_scene.hpp"
+#include "rigidity/registry.hpp"
+#include "rigidity/scene_schema.hpp"
+#include "rigidity/spelling.hpp"
+#include "scene_checker.hpp"
+#include "scene_text.hpp"
+
+namespace rigidity {
+
+namespace {
+
+using detail::Checked;
+using detail::Checker;
+using detail::format_number;
+using detail::Sources;
+
+/// Most samples a probe may take over the run (t_end / every).
+constexpr double kMaxProbeSamples = 1.0e7;
+
+/// Ends that differ by rounding only (relative 1e-12) touch: a body written to start
+/// where the previous one ends, at x = l·s/γ computed by hand, is in contact with it.
+/// The loader then moves the later end onto the earlier one, so that the Scene's
+/// bodies never overlap, not even by an ulp.
+bool within_rounding(double a, double b, double scale) {
+  return std::abs(a - b) <= 1.0e-12 * std::max({std::abs(a), std::abs(b), scale});
+}
+
+class SceneBuilder {
+ public:
+  SceneBuilder(Checker& checker, const Sources& sources, UnitSystem units)
+      : checker_(checker), sources_(sources), units_(units) {}
+
+  Scene build(Checked& root) {
+    Scene scene;
+    scene.name = root["name"].word;
+    scene.source = sources_.file();
+    scene.units = units_;
+    for (const Checked& plugin : root["plugins"].entries) scene.plugins.push_back(plugin.word);
+    read_materials(root["materials"], scene);
+    read_bodies(root["bodies"], scene);
+    scene.t_end = root["time"]["end"].number;
+    read_boundary(root["boundaries"]["left"], true, scene, scene.left);
+    read_boundary(root["boundaries"]["right"], false, scene, scene.right);
+    read_solver(root["solver"], scene.solver);
+    read_outputs(root["outputs"], root["time"]["end"], scene);
+    return scene;
+  }
+
+ private:
+  [[nodiscard]] SourceLocation where(const Checked& c) const { return sources_.locate(c.path, c.mark); }
+
+  /// `ref` names one of `names`; else an error with the closest one.
+  void require_reference(const Checked& ref, const std::set<std::string>& names, const std::string& what) const {
+    if (names.count(ref.word) != 0) return;
+    const std::vector<std::string> candidates(names.begin(), names.end());
+    const std::string near = closest_match(ref.word, candidates);
+    checker_.fail(ref, "unknown " + what + " '" + ref.word + "'" +
+                           (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+                           "; declared: " + detail::join(candidates));
+  }
+
+  void read_materials(const Checked& materials, Scene& scene) {
+    for (const Checked& entry : materials.entries) {
+      const std::string& model = entry["model"].word;
+      const MaterialInfo& info = MaterialRegistry::instance().at(model);  // the schema admits registered models only
+      ParameterValues values;
+      for (const ParameterSpec& spec : info.parameters) {
+        const Checked* value = entry.find(spec.name);
+        if (value == nullptr) continue;  // optional and without default: the material decides
+        if (spec.type == ParameterType::number)
+          values.set(spec.name, value->number);
+        else
+          values.set(spec.name, value->word);
+      }
+      std::shared_ptr<const Material> material;
+      try {
+        material = info.make(values);
+      } catch (const std::invalid_argument& e) {
+        checker_.fail(entry, "material '" + entry.name + "' (" + model + "): " + e.what());
+      }
+      scene.materials.emplace(entry.name, MaterialDecl{entry.name, model, std::move(material), where(entry)});
+      material_names_.insert(entry.name);
+    }
+  }
+
+  /// φ of a uniform state given by velocity, rapidity or gamma (+ direction).
+  static double rapidity_of(const Checked& state) {
+    if (const Checked* gamma = state.find("gamma")) return state["direction"].number * std::acosh(gamma->number);
+    if (const Checked* rapidity = state.find("rapidity")) return rapidity->number;
+    return std::atanh(state["velocity"].number);
+  }
+
+  Segment read_segment(const Checked& state, const std::string& material, const Scene& scene) const {
+    Segment segment;
+    segment.length = state["length"].number;
+    segment.rapidity = rapidity_of(state);
+    segment.stretch = Stretch::from_value(state["stretch"].number);
+    segment.material = material;
+    const std::string violation = scene.materials.at(material).material->admissibility_violation(segment.stretch);
+    if (!violation.empty()) checker_.fail(state["stretch"], "inadmissible initial state: " + violation);
+    return segment;
+  }
+
+  /// Lab length of a segment at t = 0: l·s/γ.
+  static double lab_length(const Segment& segment) {
+    return segment.length * segment.stretch.value() / std::cosh(segment.rapidity);
+  }
+
+  void read_bodies(Checked& bodies, Scene& scene) {
+    for (std::size_t i = 0; i < bodies.entries.size(); ++i) {
+      Checked& b = bodies.entries[i];
+      const Checked& name = b["name"];
+      if (const auto [first, inserted] = body_index_.emplace(name.word, i); !inserted)
+        checker_.fail(name,
+                      "duplicate body name '" + name.word + "' (body " + std::to_string(first->second) + " has it)");
+      require_reference(b["material"], material_names_, "material");
+
+      BodyDecl body;
+      body.name = name.word;
+      body.position = b["position"].number;
+      body.where = where(b);
+      if (b.has("segments")) {
+        for (Checked& s : b["segments"].entries) {
+          if (s["material"].given)
+            require_reference(s["material"], material_names_, "material");
+          else
+            s.put(checker_.derived_text(s, "material", b["material"].word));
+          body.segments.push_back(read_segment(s, s["material"].word, scene));
+        }
+      } else {
+        body.segments.push_back(read_segment(b, b["material"].word, scene));
+      }
+
+      double length = 0.0;
+      for (const Segment& segment : body.segments) length += lab_length(segment);
+      if (!scene.bodies.empty()) {
+        const BodyDecl& previous = scene.bodies.back();
+        const double previous_end = right_ends_.back();
+        if (body.position < previous_end) {
+          if (!within_rounding(body.position, previous_end, length)) {
+            const std::string start =
+                "body '" + body.name + "' starts at x = " + written(body.position, Dimension::length);
+            const std::string span = "[" + written(previous.position, Dimension::length) + ", " +
+                                     written(previous_end, Dimension::length) + "]";
+            checker_.fail(b["position"],
+                          (body.position >= previous.position
+                               ? start + ", inside body '" + previous.name + "' which spans " + span
+                               : start + ", left of body '" + previous.name + "' (" + span + ") listed before it") +
+                              "; bodies are listed left to right and may touch but not overlap");
+          }
+          body.position = previous_end;
+        }
+      }
+      right_ends_.push_back(body.position + length);
+      scene.bodies.push_back(std::move(body));
+    }
+  }
+
+  void read_boundary(Checked& side, bool left, const Scene& scene, BoundaryDecl& out) const {
+    const std::string& type = side["type"].word;
+    out.type = type == "wall" ? BoundaryType::wall : type == "piston" ? BoundaryType::piston : BoundaryType::free;
+    out.where = where(side);
+    if (out.type == BoundaryType::free) return;
+    out.bonded = side["bonded"].flag;
+
+    const double end = left ? scene.bodies.front().position : right_ends_.back();
+    if (const Checked* position = &side["position"]; position->given) {
+      const double x = position->number;
+      const bool outside = left ? x <= end : x >= end;
+      if (!outside && !within_rounding(x, end, std::abs(right_ends_.back() - scene.bodies.front().position)))
+        checker_.fail(*position, "the " + type + " must stand " + (left ? "at or left of" : "at or right of") +
+                                     " the " + (left ? "left end of the leftmost" : "right end of the rightmost") +
+                                     " body, x = " + written(end, Dimension::length) + ", not inside it; got " +
+                                     written(x, Dimension::length));
+      out.position = outside ? x : end;
+    } else {
+      out.position = end;
+      side.put(checker_.derived_number(side, "position", end, Dimension::length));
+    }
+
+    if (out.type != BoundaryType::piston) return;
+    if (const Checked* velocity = side.find("velocity")) {
+      out.piston.times = {0.0};
+      out.piston.rapidities = {std::atanh(velocity->number)};
+      return;
+    }
+    const Checked& table = side["table"];
+    for (std::size_t i = 0; i < table.entries.size(); ++i) {
+      const Checked& t = table.entries[i].entries[0];
+      if (i == 0 && t.number != 0.0)
+        checker_.fail(t, "the piston's history must start at t = 0, got " + written(t.number, Dimension::time));
+      if (i > 0 && !(t.number > out.piston.times.back()))
+        checker_.fail(t, "times must increase strictly: " + written(t.number, Dimension::time) + " follows " +
+                             written(out.piston.times.back(), Dimension::time));
+      out.piston.times.push_back(t.number);
+      out.piston.rapidities.push_back(std::atanh(table.entries[i].entries[1].number));
+    }
+  }
+
+  static void read_solver(const Checked& solver, SolverDecl& out) {
+    out.method = solver["method"].word == "finite_volume" ? SolverMethod::finite_volume : SolverMethod::characteristics;
+    out.tolerance = solver["tolerance"].number;
+    out.max_fronts = static_cast<long>(solver["max_fronts"].number);
+    out.cells = static_cast<int>(solver["cells"].number);
+    out.order = static_cast<int>(solver["order"].number);
+    out.cfl = solver["cfl"].number;
+    out.flux = solver["flux"].word == "exact" ? FluxType::exact : FluxType::hll;
+  }
+
+  static std::vector<Quantity> quantities(const Checked& list) {
+    std::vector<Quantity> out;
+    for (const Checked& q : list.entries) out.push_back(*quantity_from_string(q.word));  // the schema admits names only
+    return out;
+  }
+
+  void read_outputs(const Checked& outputs, const Checked& end, Scene& scene) const {
+    std::set<std::string> body_names;
+    for (const BodyDecl& b : scene.bodies) body_names.insert(b.name);
+
+    std::set<std::string> probe_names;
+    for (const Checked& p : outputs["probes"].entries) {
+      ProbeDecl probe;
+      probe.name = p["name"].word;
+      if (!probe_names.insert(probe.name).second) checker_.fail(p["name"], "duplicate probe name '" + probe.name + "'");
+      require_reference(p["body"], body_names, "body");
+      probe.body = p["body"].word;
+      const double l0 = scene.bodies[body_index_.at(probe.body)].natural_length();
+      const Checked& at = p["at"];
+      if (at.is_word()) {
+        probe.X = at.word == "left" ? 0.0 : l0;
+      } else {
+        if (at.number < 0.0 || at.number > l0)
+          checker_.fail(at, "must be in [0, " + written(l0, Dimension::length) + "] (a material label X of body '" +
+                                probe.body + "', whose natural length is l0 = " + written(l0, Dimension::length) +
+                                "), got " + written(at.number, Dimension::length));
+        probe.X = at.number;
+      }
+      probe.quantities = quantities(p["quantities"]);
+      probe.every = p["every"].number;
+      if (scene.t_end / probe.every > kMaxProbeSamples)
+        checker_.fail(p["every"], "gives more than " + format_number(kMaxProbeSamples) +
+                                      " samples over the run (end = " + format_number(end.as_written) +
+                                      "); sample less often");
+      probe.where = where(p);
+      scene.outputs.probes.push_back(std::move(probe));
+    }
+
+    for (const Checked& s : outputs["snapshots"].entries) {
+      SnapshotDecl snapshot;
+      for (const Checked& t : s["times"].entries) {
+        if (t.number > scene.t_end)
+          checker_.fail(t, "must be in [0, end = " + format_number(end.as_written) + "] (time.end), got " +
+                               format_number(t.as_written));
+        snapshot.times.push_back(t.number);
+      }
+      snapshot.quantities = quantities(s["quantities"]);
+      snapshot.samples = static_cast<int>(s["samples"].number);
+      for (const Checked& b : s["bodies"].entries) {
+        require_reference(b, body_names, "body");
+        snapshot.bodies.push_back(b.word);
+      }
+      snapshot.where = where(s);
+      scene.outputs.snapshots.push_back(std::move(snapshot));
+    }
+    scene.outputs.fronts = outputs["fronts"].flag;
+  }
+
+  /// A natural-unit value as the scene writes it.
+  [[nodiscard]] std::string written(double natural, Dimension d) const {
+    return format_number(from_natural(natural, d, units_));
+  }
+
+  Checker& checker_;
+  const Sources& sources_;
+  UnitSystem units_;
+  std::set<std::string> material_names_;
+  std::map<std::string, std::size_t> body_index_;  ///< body name → index
+  std::vector<double> right_ends_;                 ///< lab x of each body's right end at t = 0
+};
+
+/// The unit system the scene declares, read before any dimensional value.
+UnitSystem read_units(const YAML::Node& root, const schema::Key& schema, const Sources& sources) {
+  for (auto it = root.begin(); it != root.end(); ++it) {
+    if (!it->first.IsScalar() || it->first.Scalar() != "units") continue;
+    Checker checker(sources, UnitSystem::natural);
+    const Checked units = checker.check(it->second, *schema.field("units"), {"units"}, it->first.Mark());
+    return units.word == "si" ? UnitSystem::si : UnitSystem::natural;
+  }
+  return UnitSystem::natural;
+}
+
+Scene load(std::string_view text, const std::string& source, const std::vector<std::string>& overrides) {
+  Sources sources(source);
+  try {
+    YAML::Node root = detail::parse_scene_text(text, source);
+    for (const std::string& assignment : overrides) sources.apply_override(root, assignment);
+    const schema::Key schema = schema::scene_schema();
+    const UnitSystem units = read_units(root, schema, sources);
+    Checker checker(sources, units);
+    Checked checked = checker.check(root, schema, {}, root.Mark());
+    Scene scene = SceneBuilder(checker, sources, units).build(checked);
+    scene.resolved_yaml = detail::emit_resolved(checked, units);
+    return scene;
+  } catch (const YAML::Exception& e) {
+    // Walking a tree yaml-cpp has built should not throw; if it does, the input is at fault.
+    throw InputError(SourceLocation{source, e.mark.line + 1, e.mark.column + 1}, "", "YAML error: " + e.msg);
+  }
+}
+
+}  // namespace
+
+Scene load_scene_string(std::string_view text, const std::string& source, const std::vector<std::string>& overrides) {
+  return load(text, source, overrides);
+}
+
+Scene load_scene_file(const std::string& path, const std::vector<std::string>& overrides) {
+  std::error_code ec;
+  const bool is_file = std::filesystem::is_regular_file(path, ec);
+  if (ec || !is_file) {
+    const bool exists = std::filesystem::exists(path, ec);
+    throw InputError(SourceLocation{path, 0, 0}, "", exists ? "not a regular file" : "no such file");
+  }
+  if (const auto size = std::filesystem::file_size(path, ec); !ec && size > schema::kMaxInputBytes)
+    throw InputError(SourceLocation{path, 1, 1}, "",
+                     "the file is " + std::to_string(size) + " bytes; a scene file is at most " +
+                         std::to_string(schema::kMaxInputBytes) + " bytes");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(SourceLocation{path, 0, 0}, "", "cannot open the file for reading");
+  std::string text;
+  text.reserve(schema::kMaxInputBytes / 16);
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > schema::kMaxInputBytes) break;  // grew while we read; parse_scene_text refuses it
+  }
+  if (in.bad()) throw InputError(SourceLocation{path, 0, 0}, "", "error while reading the file");
+  return load(text, path, overrides);
+}
+
+std::string_view default_scene_text() { return detail::kDefaultSceneText; }
+
+}  // namespace rigidity
