@@ -242,12 +242,11 @@ class Tracker {
     nodes_[id].piece = piece;
     return id;
   }
+  /// Removes a node from the pool; a front's energy books must be closed first
+  /// (account_front_end), while its neighbours are still its own.
   void kill_node(int id, double t) {
     Node& n = nodes_[id];
-    if (n.kind == NodeKind::front) {
-      account_front_end(id, t);
-      --live_fronts_;
-    }
+    if (n.kind == NodeKind::front) --live_fronts_;
     record_segment(n, t);
     meetings_.erase(id);
     n.alive = false;
@@ -273,6 +272,7 @@ class Tracker {
   // ---- interactions -------------------------------------------------------------------
   void handle(const Event& e);
   void resolve(int seed_left, int seed_right, double t);
+  bool rejoin(int right_end, int left_end, double t, double x);
   bool cross_in_place(int a, int b, double t);
   void resolve_group(std::vector<int>& group, double t);
   void wave(const Material& m, const State& outer, const State& star, int family, WaveStates& w);
@@ -498,6 +498,7 @@ void Tracker::handle(const Event& e) {
     case EventType::resolve: resolve(e.a, e.a, t); break;
     case EventType::gap: {
       const double x = 0.5 * (nodes_[e.a].x_at(t) + nodes_[e.b].x_at(t));
+      if (rejoin(e.a, e.b, t, x)) break;
       set_attach(e.a, Attach::body, e.b, t);
       set_attach(e.b, Attach::body, e.a, t);
       event(t, "contact", x, {piece_body_name(nodes_[e.a].piece), piece_body_name(nodes_[e.b].piece)});
@@ -532,12 +533,46 @@ void Tracker::handle(const Event& e) {
   }
 }
 
+/// Two pieces of one body that parted at a crack meet again at it: the void closes
+/// and they are one piece again, with a jump at the old crack resolved at once.
+/// Returns false if the ends do not belong together (different bodies, or not the
+/// two faces of one crack).
+bool Tracker::rejoin(int right_end, int left_end, double t, double x) {
+  const int a = nodes_[right_end].piece, b = nodes_[left_end].piece;
+  if (pieces_[a].body != pieces_[b].body) return false;
+  const double X = nodes_[right_end].X_at(t);
+  if (std::abs(nodes_[left_end].X_at(t) - X) > 8.0 * kEps * (1.0 + std::abs(X))) return false;
+
+  const int junction = new_node(NodeKind::front, a);
+  Node& j = nodes_[junction];
+  j.front_kind = FrontKind::contact;
+  j.t0 = t;
+  j.X0 = X;
+  j.x0 = x;
+  j.right = nodes_[left_end].right;
+  ++live_fronts_;
+  const int before = nodes_[right_end].prev, after = nodes_[left_end].next;
+  kill_node(right_end, t);
+  kill_node(left_end, t);
+  link(before, junction);
+  link(junction, after);
+  for (int n = junction; n != kNone; n = nodes_[n].next) nodes_[n].piece = a;
+  pieces_[a].right_end = pieces_[b].right_end;
+  pieces_[b].left_end = pieces_[b].right_end = kNone;  // gone
+  order_.erase(std::find(order_.begin(), order_.end(), b));
+  event(t, "rejoin", x, {piece_body_name(a)});
+  resolve(junction, junction, t);
+  schedule_gaps_around(a);
+  return true;
+}
+
 /// The common interaction of a linearly degenerate material, done in place: a C+
 /// front a meets a C− front b inside one material and nothing else is there. They
 /// leave as a C− front (in a's node) and a C+ front (in b's node) around the closed-form
 /// star state; the outer regions are untouched. Returns false (doing nothing) when
 /// the general resolution is needed.
 bool Tracker::cross_in_place(int a, int b, double t) {
+  if (result_.stats.interactions >= scene_.solver.max_interactions) return false;  // resolve_group reports it
   Node& na = nodes_[a];
   Node& nb = nodes_[b];
   if (na.kind != NodeKind::front || nb.kind != NodeKind::front || na.family != +1 || nb.family != -1) return false;
@@ -794,7 +829,12 @@ void Tracker::split_piece(int left_node, int right_node, const State& left_state
 }
 
 void Tracker::resolve_group(std::vector<int>& group, double t) {
-  ++result_.stats.interactions;
+  if (++result_.stats.interactions > scene_.solver.max_interactions) {
+    throw NumericalError("more than solver.max_interactions = " + std::to_string(scene_.solver.max_interactions) +
+                         " interactions by t = " + number(t) + " (of t_end = " + number(scene_.t_end) +
+                         "); the bodies keep fragmenting or colliding: shorten time.end, coarsen solver.tolerance"
+                         " or raise solver.max_interactions");
+  }
   const int first = group.front(), last = group.back();
   const Node& nf = nodes_[first];
   const Node& nl = nodes_[last];
@@ -845,7 +885,10 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   if (left_boundary && nf.attach == Attach::boundary) flush_wall(nf.partner, t);
   if (right_boundary && nl.attach == Attach::boundary) flush_wall(nl.partner, t);
 
-  // Remove the fronts of the group; keep ends and interfaces.
+  // Remove the fronts of the group; keep ends and interfaces. Their energy books
+  // are closed first, while each front's neighbours are still the states it separated.
+  for (int id : group)
+    if (nodes_[id].kind == NodeKind::front) account_front_end(id, t);
   for (int id : group)
     if (nodes_[id].kind == NodeKind::front) {
       const int p = nodes_[id].prev, n = nodes_[id].next;
@@ -903,6 +946,9 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   if (!right_boundary) {
     wave(*mR, right_region.state, sol.right, +1, wr);
     emit_fronts(*mR, wr, +1, right_piece, t, XR, x, emitted_right_);
+    // Emitted from the outer state inwards; in space the C+ fan's head (next to the
+    // right state) is its rightmost front.
+    std::reverse(emitted_right_.begin(), emitted_right_.end());
   }
 
   // Link: [before] − fronts [centre] + fronts [right state holder].
@@ -1107,6 +1153,7 @@ void Tracker::sample(const SampleTime& st) {
 void Tracker::totals(double t, double& energy, double& momentum) const {
   energy = momentum = 0.0;
   for (const Piece& piece : pieces_) {
+    if (piece.left_end == kNone) continue;  // rejoined into another piece
     for (int n = piece.left_end; nodes_[n].kind != NodeKind::right_end; n = nodes_[n].next) {
       const Node& node = nodes_[n];
       const double dX = nodes_[node.next].X_at(t) - node.X_at(t);

@@ -63,6 +63,7 @@ struct SolverDecl {
   SolverMethod method = SolverMethod::characteristics;
   double tolerance = 1.0e-12;   ///< characteristics: target accuracy (fan step in Ψ)
   long max_fronts = 1000000;    ///< characteristics: refuse to track more live fronts than this
+  long max_interactions = 1000000000;  ///< characteristics: stop with an error after this many interactions
   int cells = 400;              ///< finite volume
   int order = 2;                ///< finite volume: 1 or 2
   double cfl = 0.5;             ///< finite volume

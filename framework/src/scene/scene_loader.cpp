@@ -221,6 +221,7 @@ class SceneBuilder {
     out.method = solver["method"].word == "finite_volume" ? SolverMethod::finite_volume : SolverMethod::characteristics;
     out.tolerance = solver["tolerance"].number;
     out.max_fronts = static_cast<long>(solver["max_fronts"].number);
+    out.max_interactions = static_cast<long>(solver["max_interactions"].number);
     out.cells = static_cast<int>(solver["cells"].number);
     out.order = static_cast<int>(solver["order"].number);
     out.cfl = solver["cfl"].number;

@@ -240,6 +240,11 @@ Key solver_key() {
               .at_least(1.0)
               .at_most(1.0e12)
               .defaults_to(1.0e6),
+          Key::integer("max_interactions",
+                       "characteristics: stop with an error after this many interactions (a run that would never end)")
+              .at_least(1.0)
+              .at_most(1.0e15)
+              .defaults_to(1.0e9),
           Key::integer("cells", "finite_volume: number of cells").at_least(2.0).at_most(1.0e8).defaults_to(400.0),
           Key::integer("order", "finite_volume: spatial order, 1 or 2").one_of_values({1.0, 2.0}).defaults_to(2.0),
           Key::number("cfl", "finite_volume: Courant number").above(0.0).at_most(1.0).defaults_to(0.5),
