@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "rigidity/errors.hpp"
+#include "rigidity/plugins.hpp"
 #include "rigidity/registry.hpp"
 #include "rigidity/spelling.hpp"
 #include "rigidity/version.hpp"
@@ -53,6 +54,48 @@ constexpr Command kCommands[] = {
      "options:\n"
      "  --json                 print the list as JSON\n",
      materials_command},
+    {"compare",
+     "rigidity compare [--materials a,b] [--out DIR] [--speeds v,...] [--impact-speed v] [--param model.name=x ...]",
+     "compare the materials: stress-strain laws, sound speeds and wall impacts",
+     "For every registered material (or those named by --materials) tabulates the\n"
+     "stress-strain law p(s) in compression and traction, the sound speed c_s(s), and the\n"
+     "exact wall impact of an unstrained bar at each speed v (exact Riemann solver): the\n"
+     "stretch s and pressure p behind the reflected front, and the front's speed relative\n"
+     "to the unstrained bar. Writes into DIR (default out/compare):\n"
+     "  materials.csv      one row per material: parameters, c_s at s = 1, maximum pressure\n"
+     "                     and tension (inf if unbounded), linear degeneracy, the impact at\n"
+     "                     --impact-speed, and crush_speed, the impact speed that crushes it\n"
+     "                     (empty cells: no classical solution, or no such speed)\n"
+     "  stress_strain.csv  material,s,p,e,cs on a grid of s (admissible stretches only)\n"
+     "  impact.csv         material,v,s,p,front_speed (speeds below the crush speed only)\n"
+     "  stress_strain.png, sound_speed.png, impact.png and the gnuplot scripts (.gp)\n"
+     "that draw them, and prints a markdown summary. Without gnuplot the tables and\n"
+     "scripts are written and a warning says the plots were not drawn.\n"
+     "A parameter that is required and has no default takes a representative value: the\n"
+     "midpoint of a bounded range, else 1 if allowed, else one unit inside its bound.\n"
+     "\n"
+     "options:\n"
+     "  --materials a,b,...    the materials to compare (default: every registered one)\n"
+     "  --out DIR              output directory (default out/compare)\n"
+     "  --speeds v1,v2,...     wall impact speeds in (0, 1) for impact.csv\n"
+     "                         (default 0.01, 0.02, ..., 0.99)\n"
+     "  --impact-speed v       the impact speed of materials.csv (default 0.5)\n"
+     "  --param model.name=x   a material parameter, e.g. --param hooke.wave_speed=0.3\n"
+     "                         (repeatable)\n",
+     compare_command},
+    {"plot", "rigidity plot RUN_DIR [--out DIR]", "draw a run's outputs as PNG images with gnuplot",
+     "Reads the outputs `rigidity run` wrote into RUN_DIR and draws, with gnuplot:\n"
+     "  xt.png         the x-t diagram of the fronts, coloured by kind (fronts.csv)\n"
+     "  probes.png     probe histories, one panel per quantity (probes.csv)\n"
+     "  snapshots.png  snapshot profiles against the label X, one panel per quantity\n"
+     "                 (snapshots.csv)\n"
+     "A plot whose CSV file is missing or empty is skipped. Each PNG is drawn by a gnuplot\n"
+     "script written beside it (xt.gp, ...), kept so that it can be edited and rerun\n"
+     "(cd DIR && gnuplot xt.gp). Without gnuplot on PATH: an error and exit 1.\n"
+     "\n"
+     "options:\n"
+     "  --out DIR              where the images and scripts go (default RUN_DIR)\n",
+     plot_command},
 };
 
 const Command* find_command(std::string_view name) {
@@ -124,6 +167,7 @@ int dispatch(const std::vector<std::string>& args) {
     if (!near.empty()) message += " (did you mean '" + near + "'?)";
     throw usage_error("", message);
   }
+  load_environment_plugins();  // RIGIDITY_PLUGIN_PATH (plugins.hpp): their materials are every command's
   return command->run(std::span<const std::string>(args).subspan(1), std::cout);
 }
 

@@ -4,10 +4,14 @@
 ///   rigidity run [SCENE.yaml] [--out DIR] [--set key.path=value ...]
 ///   rigidity validate SCENE.yaml [--set key.path=value ...]
 ///   rigidity materials [NAME] [--json]
+///   rigidity compare [--materials a,b,...] [--out DIR] [--speeds v1,v2,...] [--impact-speed v]
+///                    [--param model.name=value ...]
+///   rigidity plot RUN_DIR [--out DIR]
 ///
 /// Exit status: 0 done, 1 internal failure, 2 invalid input, 3 physically inadmissible.
 /// This header is private to the executable.
 
+#include <filesystem>
 #include <iosfwd>
 #include <optional>
 #include <span>
@@ -82,6 +86,22 @@ struct Arguments {
 int run_command(std::span<const std::string> args, std::ostream& out);
 int validate_command(std::span<const std::string> args, std::ostream& out);
 int materials_command(std::span<const std::string> args, std::ostream& out);
+int compare_command(std::span<const std::string> args, std::ostream& out);
+int plot_command(std::span<const std::string> args, std::ostream& out);
+
+// gnuplot, shared by `compare` and `plot` (defined in plot_command.cpp).
+
+/// The gnuplot executable found on PATH, or an empty path if there is none.
+[[nodiscard]] std::filesystem::path find_gnuplot();
+/// Writes `script` to dir/NAME.gp (kept, so that users can tweak and rerun it) and runs
+/// `gnuplot NAME.gp` in dir, which is expected to write dir/NAME.png.
+/// \throws CommandError (exit 1) with gnuplot's messages if it fails or writes no PNG
+void render_gnuplot(const std::filesystem::path& gnuplot, const std::filesystem::path& dir, const std::string& name,
+                    const std::string& script);
+/// `text` as a single-quoted gnuplot string literal.
+[[nodiscard]] std::string gnuplot_quote(std::string_view text);
+/// `text` as gnuplot comment lines ("# ..."), wrapped at word boundaries.
+[[nodiscard]] std::string gnuplot_comment(std::string_view text);
 
 }  // namespace cli
 }  // namespace rigidity

@@ -1,0 +1,462 @@
+// rigidity plot RUN_DIR [--out DIR]: a run's outputs drawn with gnuplot (the x–t
+// diagram, probe histories, snapshot profiles), and the gnuplot plumbing that
+// `rigidity compare` shares: find gnuplot on PATH, write a script, run it, check it.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <optional>
+#include <ostream>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <unordered_set>
+#include <vector>
+
+#include "rigidity/cli.hpp"
+#include "rigidity/errors.hpp"
+#include "rigidity/quantity.hpp"
+#include "rigidity/units.hpp"
+
+namespace rigidity::cli {
+
+namespace fs = std::filesystem;
+
+// ---- gnuplot ------------------------------------------------------------------------
+
+namespace {
+
+/// `text` quoted for /bin/sh.
+std::string shell_quote(std::string_view text) {
+  std::string out = "'";
+  for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+bool is_executable_file(const fs::path& path) {
+  std::error_code error;
+  return fs::is_regular_file(path, error) && ::access(path.c_str(), X_OK) == 0;
+}
+
+}  // namespace
+
+fs::path find_gnuplot() {
+  const char* path = std::getenv("PATH");
+  // execvp's default search path when PATH is unset.
+  const std::string_view directories = path != nullptr ? std::string_view(path) : std::string_view("/bin:/usr/bin");
+  std::size_t start = 0;
+  while (start <= directories.size()) {
+    const std::size_t end = std::min(directories.find(':', start), directories.size());
+    const std::string_view directory = directories.substr(start, end - start);
+    if (!directory.empty()) {
+      fs::path candidate = fs::path(directory) / "gnuplot";
+      if (is_executable_file(candidate)) return candidate;
+    }
+    start = end + 1;
+  }
+  return {};
+}
+
+std::string gnuplot_quote(std::string_view text) {
+  std::string out = "'";
+  for (const char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string gnuplot_comment(std::string_view text) {
+  constexpr std::size_t kWidth = 100;
+  std::string out, line = "#";
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t end = std::min(text.find(' ', start), text.size());
+    const std::string_view word = text.substr(start, end - start);
+    if (line.size() > 1 && line.size() + 1 + word.size() > kWidth) {
+      out += line + "\n";
+      line = "#";
+    }
+    if (!word.empty()) line += " " + std::string(word);
+    start = end + 1;
+  }
+  return out + line + "\n";
+}
+
+void render_gnuplot(const fs::path& gnuplot, const fs::path& dir, const std::string& name, const std::string& script) {
+  const std::string script_name = name + ".gp";
+  const fs::path png = dir / (name + ".png");
+  {
+    std::ofstream file(dir / script_name, std::ios::binary);
+    file << script;
+    file.close();
+    if (!file) throw CommandError(kExitInternal, "cannot write " + (dir / script_name).string());
+  }
+  std::error_code ignored;
+  fs::remove(png, ignored);  // a PNG left from an earlier call must not pass for this one
+
+  // Run in `dir`, so that the script's relative paths hold when it is rerun by hand there.
+  const std::string command = "cd " + shell_quote(dir.string()) + " && " + shell_quote(gnuplot.string()) + " " +
+                              shell_quote(script_name) + " 2>&1";
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) throw CommandError(kExitInternal, "cannot start gnuplot (" + gnuplot.string() + ")");
+  std::string messages;
+  std::array<char, 4096> buffer{};
+  for (std::size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0;) messages.append(buffer.data(), n);
+  const int status = ::pclose(pipe);
+
+  const std::string where = (dir / script_name).string();
+  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    const std::string how = status != -1 && WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status))
+                                                              : std::string("abnormal termination");
+    throw CommandError(kExitInternal, "gnuplot failed on " + where + " (" + how + ")" +
+                                          (messages.empty() ? std::string() : ":\n" + messages));
+  }
+  if (!fs::is_regular_file(png, ignored) || fs::file_size(png, ignored) == 0)
+    throw CommandError(kExitInternal, "gnuplot ran " + where + " but wrote no " + png.string() +
+                                          (messages.empty() ? std::string() : ":\n" + messages));
+}
+
+// ---- rigidity plot ------------------------------------------------------------------
+
+namespace {
+
+/// The fields of one CSV line (RFC 4180 quoting, as the run writers quote).
+std::vector<std::string> csv_fields(std::string_view line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        fields.back() += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        fields.back() += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      fields.emplace_back();
+    } else if (c != '\r') {
+      fields.back() += c;
+    }
+  }
+  return fields;
+}
+
+/// Calls `row` with the fields of every data row of a CSV file; returns the number of
+/// rows, or nullopt if the file does not exist. \throws CommandError (exit 2) if the
+/// header is not `expected_header`.
+std::optional<long> for_each_row(const fs::path& path, std::string_view expected_header,
+                                 const std::function<void(const std::vector<std::string>&)>& row) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::string line;
+  std::getline(in, line);
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  if (line != expected_header)
+    throw CommandError(kExitInvalidInput, path.string() + ": expected the header '" + std::string(expected_header) +
+                                              "', found '" + line + "'");
+  long rows = 0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line == "\r") continue;
+    row(csv_fields(line));
+    ++rows;
+  }
+  return rows;
+}
+
+/// Distinct values in the order they first appear.
+class Distinct {
+ public:
+  void add(const std::string& value) {
+    if (seen_.insert(value).second) values_.push_back(value);
+  }
+  [[nodiscard]] const std::vector<std::string>& values() const { return values_; }
+  [[nodiscard]] bool contains(const std::string& value) const { return seen_.count(value) != 0; }
+
+ private:
+  std::vector<std::string> values_;
+  std::unordered_set<std::string> seen_;
+};
+
+/// What summary.json says about the run: its scene name and unit system.
+struct RunInfo {
+  std::string scene;
+  UnitSystem units = UnitSystem::natural;
+};
+
+/// The string value of `"key": "..."` in a JSON text written by rigidity's JsonWriter, if any.
+std::optional<std::string> json_string_member(const std::string& json, std::string_view key) {
+  const std::string pattern = "\"" + std::string(key) + "\": \"";
+  const std::size_t start = json.find(pattern);
+  if (start == std::string::npos) return std::nullopt;
+  std::string value;
+  for (std::size_t i = start + pattern.size(); i < json.size() && json[i] != '"'; ++i) {
+    if (json[i] == '\\' && i + 1 < json.size()) ++i;
+    value += json[i];
+  }
+  return value;
+}
+
+RunInfo read_run_info(const fs::path& run_dir) {
+  RunInfo info;
+  info.scene = fs::absolute(run_dir).lexically_normal().filename().string();
+  if (info.scene.empty()) info.scene = fs::absolute(run_dir).lexically_normal().parent_path().filename().string();
+  std::ifstream in(run_dir / "summary.json", std::ios::binary);
+  if (!in) return info;
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::string json = text.str();
+  if (const auto scene = json_string_member(json, "scene")) info.scene = *scene;
+  if (const auto system = json_string_member(json, "system"); system && *system == "si") info.units = UnitSystem::si;
+  return info;
+}
+
+/// "name [unit]" for an axis.
+std::string axis_label(std::string_view name, Dimension dimension, UnitSystem units) {
+  if (dimension == Dimension::dimensionless) return std::string(name);
+  return std::string(name) + " [" + std::string(unit_symbol(dimension, units)) + "]";
+}
+
+std::string quantity_label(const std::string& quantity, UnitSystem units) {
+  const std::optional<Quantity> q = quantity_from_string(quantity);
+  return axis_label(quantity, q ? dimension_of(*q) : Dimension::dimensionless, units);
+}
+
+/// The first lines of every script: PNG output with literal (not "enhanced") text, CSV input.
+std::string script_header(std::string_view what, std::string_view name, int width, int height) {
+  std::string out = gnuplot_comment(what);
+  out += "# Written by `rigidity plot`; edit and rerun from this directory: gnuplot " + std::string(name) + ".gp\n";
+  out += "set terminal pngcairo size " + std::to_string(width) + "," + std::to_string(height) +
+         " font 'Sans,11' noenhanced\n";
+  out += "set encoding utf8\n";
+  out += "set output " + gnuplot_quote(std::string(name) + ".png") + "\n";
+  out += "set datafile separator ','\n";
+  out += "set datafile missing NaN  # rows filtered out as NaN do not break a line\n";
+  out += "set grid lc rgb '#dddddd'\n";
+  return out;
+}
+
+/// Rows and columns of a multiplot of n panels: one column up to 2 panels, else two.
+std::pair<int, int> panel_grid(std::size_t n) {
+  const int columns = n <= 2 ? 1 : 2;
+  const int rows = static_cast<int>((n + static_cast<std::size_t>(columns) - 1) / static_cast<std::size_t>(columns));
+  return {rows, columns};
+}
+
+std::string join_plot(const std::vector<std::string>& elements) {
+  std::string out = "plot ";
+  for (std::size_t i = 0; i < elements.size(); ++i) out += (i == 0 ? "" : ", \\\n     ") + elements[i];
+  return out + "\n";
+}
+
+// ---- the three plots ------------------------------------------------------------------
+
+/// Front kinds (SPEC §5) and their colours, as in scripts/plot_xt.sh.
+struct KindStyle {
+  std::string_view kind;
+  std::string_view colour;
+  std::string_view width;
+};
+constexpr KindStyle kKindStyles[] = {{"contact", "#d62728", "1.5"},
+                                     {"shock", "#9467bd", "2"},
+                                     {"rarefaction", "#1f77b4", "1"},
+                                     {"interface", "#2ca02c", "1.5"},
+                                     {"boundary", "#222222", "2.5"}};
+
+std::optional<std::string> xt_script(const fs::path& csv, const std::string& data, const RunInfo& run) {
+  Distinct kinds;
+  const std::optional<long> rows = for_each_row(csv, "t0,x0,t1,x1,kind,family", [&](const auto& f) {
+    if (f.size() == 6) kinds.add(f[4]);
+  });
+  if (!rows || *rows == 0) return std::nullopt;
+
+  std::string out = script_header("The x-t diagram of " + run.scene + ": every front segment of fronts.csv " +
+                                      "(t0,x0,t1,x1,kind,family) drawn from (x0, t0) to (x1, t1), coloured by kind.",
+                                  "xt", 900, 650);
+  out += "set title " + gnuplot_quote(run.scene + ": fronts in the lab frame") + "\n";
+  out += "set xlabel " + gnuplot_quote(axis_label("x", Dimension::length, run.units)) + "\n";
+  out += "set ylabel " + gnuplot_quote(axis_label("t", Dimension::time, run.units)) + "\n";
+  out += "set key outside right\n";
+  out += "data = " + gnuplot_quote(data) + "\n";
+  // The kinds present, in the order of kKindStyles; a kind this version does not know, in grey.
+  std::vector<std::pair<std::string, KindStyle>> present;
+  for (const KindStyle& style : kKindStyles)
+    if (kinds.contains(std::string(style.kind))) present.emplace_back(std::string(style.kind), style);
+  for (const std::string& kind : kinds.values())
+    if (std::none_of(std::begin(kKindStyles), std::end(kKindStyles),
+                     [&](const KindStyle& s) { return s.kind == kind; }))
+      present.emplace_back(kind, KindStyle{kind, "#999999", "1"});
+  std::vector<std::string> elements;
+  for (const auto& [kind, style] : present)
+    elements.push_back("data skip 1 using (strcol(5) eq " + gnuplot_quote(kind) +
+                       " ? $2 : NaN):1:($4-$2):($3-$1) with vectors nohead lw " + std::string(style.width) +
+                       " lc rgb '" + std::string(style.colour) + "' title " + gnuplot_quote(kind));
+  return out + join_plot(elements);
+}
+
+std::optional<std::string> probes_script(const fs::path& csv, const std::string& data, const RunInfo& run) {
+  Distinct quantities;
+  std::vector<std::pair<std::string, Distinct>> probes_of;  // quantity -> probes that sample it
+  const std::optional<long> rows = for_each_row(csv, "t,probe,quantity,value", [&](const auto& f) {
+    if (f.size() != 4) return;
+    if (!quantities.contains(f[2])) probes_of.emplace_back(f[2], Distinct{});
+    quantities.add(f[2]);
+    for (auto& [quantity, probes] : probes_of)
+      if (quantity == f[2]) probes.add(f[1]);
+  });
+  if (!rows || *rows == 0) return std::nullopt;
+
+  const auto [panel_rows, panel_columns] = panel_grid(probes_of.size());
+  std::string out = script_header(
+      "Probe histories of " + run.scene + " from probes.csv (t,probe,quantity,value): one panel per quantity.",
+      "probes", panel_columns == 1 ? 900 : 1300, 80 + 330 * panel_rows);
+  out += "data = " + gnuplot_quote(data) + "\n";
+  out += "set multiplot layout " + std::to_string(panel_rows) + "," + std::to_string(panel_columns) + " title " +
+         gnuplot_quote(run.scene + ": probe histories") + "\n";
+  out += "set xlabel " + gnuplot_quote(axis_label("t", Dimension::time, run.units)) + "\n";
+  out += "set key top right\n";
+  for (const auto& [quantity, probes] : probes_of) {
+    out += "set title " + gnuplot_quote(quantity) + "\n";
+    out += "set ylabel " + gnuplot_quote(quantity_label(quantity, run.units)) + "\n";
+    std::vector<std::string> elements;
+    for (const std::string& probe : probes.values())
+      elements.push_back("data skip 1 using 1:(strcol(2) eq " + gnuplot_quote(probe) + " && strcol(3) eq " +
+                         gnuplot_quote(quantity) + " ? $4 : NaN) with lines lw 2 title " + gnuplot_quote(probe));
+    out += join_plot(elements);
+  }
+  return out + "unset multiplot\n";
+}
+
+std::optional<std::string> snapshots_script(const fs::path& csv, const std::string& data, const RunInfo& run) {
+  Distinct times, bodies, quantities;
+  const std::optional<long> rows = for_each_row(csv, "t,body,X,quantity,value", [&](const auto& f) {
+    if (f.size() != 5 || f[3] == "X") return;  // X against X says nothing
+    times.add(f[0]);
+    bodies.add(f[1]);
+    quantities.add(f[3]);
+  });
+  if (!rows || quantities.values().empty()) return std::nullopt;
+
+  const auto [panel_rows, panel_columns] = panel_grid(quantities.values().size());
+  std::string out = script_header("Snapshot profiles of " + run.scene +
+                                      " from snapshots.csv (t,body,X,quantity,value): one panel per quantity, "
+                                      "one line per time (colour) and body (dash).",
+                                  "snapshots", panel_columns == 1 ? 900 : 1300, 80 + 330 * panel_rows);
+  out += "data = " + gnuplot_quote(data) + "\n";
+  out += "set palette defined (0 '#1f3b99', 0.5 '#2ca02c', 1 '#d62728')  # early to late\n";
+  out += "unset colorbox\n";
+  out += "set multiplot layout " + std::to_string(panel_rows) + "," + std::to_string(panel_columns) + " title " +
+         gnuplot_quote(run.scene + ": snapshots") + "\n";
+  out += "set xlabel " + gnuplot_quote(axis_label("X (label)", Dimension::length, run.units)) + "\n";
+  out += "set key top right\n";
+  const std::size_t curves = times.values().size() * bodies.values().size();
+  for (const std::string& quantity : quantities.values()) {
+    out += "set title " + gnuplot_quote(quantity) + "\n";
+    out += "set ylabel " + gnuplot_quote(quantity_label(quantity, run.units)) + "\n";
+    std::vector<std::string> elements;
+    for (std::size_t i = 0; i < times.values().size(); ++i) {
+      const std::string& t = times.values()[i];
+      const double fraction =
+          times.values().size() > 1 ? static_cast<double>(i) / static_cast<double>(times.values().size() - 1) : 0.0;
+      for (std::size_t b = 0; b < bodies.values().size(); ++b) {
+        const std::string& body = bodies.values()[b];
+        const std::size_t index = i * bodies.values().size() + b;
+        const bool titled = curves <= 12 || index == 0 || index + 1 == curves;  // a readable key
+        std::string title = "t = " + t + (bodies.values().size() > 1 ? " " + body : std::string());
+        std::array<char, 32> frac{};
+        std::snprintf(frac.data(), frac.size(), "%.4f", fraction);
+        elements.push_back("data skip 1 using 3:(strcol(1) eq " + gnuplot_quote(t) + " && strcol(2) eq " +
+                           gnuplot_quote(body) + " && strcol(4) eq " + gnuplot_quote(quantity) +
+                           " ? $5 : NaN) with lines lw 2 dt " + std::to_string(b % 5 + 1) + " lc palette frac " +
+                           frac.data() + (titled ? " title " + gnuplot_quote(title) : std::string(" notitle")));
+      }
+    }
+    out += join_plot(elements);
+  }
+  return out + "unset multiplot\n";
+}
+
+/// `target` as seen from `base` (relative if possible), for the scripts' data paths.
+std::string path_from(const fs::path& base, const fs::path& target) {
+  std::error_code error;
+  const fs::path relative = fs::relative(target, base, error);
+  if (!error && !relative.empty()) return relative.generic_string();
+  return fs::absolute(target).generic_string();
+}
+
+}  // namespace
+
+int plot_command(std::span<const std::string> args, std::ostream& out) {
+  static constexpr OptionSpec kOptions[] = {{"--out", true}};
+  const Arguments parsed = parse_arguments("plot", args, kOptions);
+  if (parsed.help) {
+    out << help("plot");
+    return kExitOk;
+  }
+  if (parsed.positional.size() != 1) throw usage_error("plot", "plot takes one run directory");
+
+  const fs::path run_dir = parsed.positional[0];
+  std::error_code error;
+  if (!fs::is_directory(run_dir, error))
+    throw CommandError(kExitInvalidInput, "run directory " + run_dir.string() + " not found");
+  constexpr std::string_view kRunFiles[] = {"summary.json", "fronts.csv", "probes.csv", "snapshots.csv"};
+  if (std::none_of(std::begin(kRunFiles), std::end(kRunFiles),
+                   [&](std::string_view f) { return fs::exists(run_dir / f, error); }))
+    throw CommandError(kExitInvalidInput, run_dir.string() +
+                                              " is not a run directory: it holds none of summary.json, fronts.csv, "
+                                              "probes.csv, snapshots.csv (written by `rigidity run`)");
+
+  const fs::path gnuplot = find_gnuplot();
+  if (gnuplot.empty())
+    throw CommandError(kExitInternal,
+                       "gnuplot not found on PATH: `rigidity plot` draws with gnuplot "
+                       "(Debian: apt-get install gnuplot-nox)");
+
+  const fs::path out_dir = parsed.value("--out").value_or(run_dir.string());
+  fs::create_directories(out_dir, error);
+  if (!fs::is_directory(out_dir, error))
+    throw CommandError(kExitInvalidInput, "cannot create the output directory " + out_dir.string());
+
+  const RunInfo run = read_run_info(run_dir);
+  struct Plot {
+    std::string_view name;
+    std::string_view csv;
+    std::optional<std::string> (*script)(const fs::path&, const std::string&, const RunInfo&);
+  };
+  constexpr Plot kPlots[] = {{"xt", "fronts.csv", xt_script},
+                             {"probes", "probes.csv", probes_script},
+                             {"snapshots", "snapshots.csv", snapshots_script}};
+  std::vector<std::string> drawn;
+  for (const Plot& plot : kPlots) {
+    const fs::path csv = run_dir / plot.csv;
+    const std::optional<std::string> script = plot.script(csv, path_from(out_dir, csv), run);
+    if (!script) {
+      out << "skipped " << plot.name << ".png: " << csv.string()
+          << (fs::exists(csv, error) ? " has no data" : " not found") << "\n";
+      continue;
+    }
+    render_gnuplot(gnuplot, out_dir, std::string(plot.name), *script);
+    drawn.push_back(std::string(plot.name));
+  }
+  if (drawn.empty()) {
+    out << "nothing to plot in " << run_dir.string() << "\n";
+    return kExitOk;
+  }
+  out << "plots in " << out_dir.string() << (out_dir.string().ends_with('/') ? "" : "/") << ":";
+  for (std::size_t i = 0; i < drawn.size(); ++i) out << (i == 0 ? " " : ", ") << drawn[i] << ".png";
+  out << " (gnuplot scripts beside them: ";
+  for (std::size_t i = 0; i < drawn.size(); ++i) out << (i == 0 ? "" : ", ") << drawn[i] << ".gp";
+  out << ")\n";
+  return kExitOk;
+}
+
+}  // namespace rigidity::cli
