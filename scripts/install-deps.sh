@@ -3,7 +3,8 @@
 # Needs root (or sudo) only when something has to be installed.
 set -euo pipefail
 
-packages=(build-essential cmake libeigen3-dev libyaml-cpp-dev libgsl-dev libbenchmark-dev libgtest-dev gnuplot-nox)
+# Extra package names may be given as arguments (the sanitizer and fuzzing job adds clang).
+packages=(build-essential cmake libeigen3-dev libyaml-cpp-dev libgsl-dev libbenchmark-dev libgtest-dev gnuplot-nox "$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
