@@ -1,0 +1,94 @@
+// Material evaluations per material — p, e, c_s, Ψ and the inverses s(p), s(Ψ) —
+// closed forms of the built-ins against the generic numeric path (GSL), and one
+// exact Riemann solve per material pair.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rigidity/numeric_material.hpp"
+#include "rigidity/registry.hpp"
+#include "rigidity/solvers/riemann.hpp"
+
+namespace {
+
+std::shared_ptr<const rigidity::Material> make(const std::string& model) {
+  rigidity::ParameterValues values;
+  values.set("rest_density", 1.0);
+  if (model == "hooke") values.set("wave_speed", 0.5);
+  if (model == "constant_sound_speed") values.set("sound_speed", 0.5);
+  return rigidity::MaterialRegistry::instance().at(model).make(values);
+}
+
+/// The rigid law given only as p(s): everything else comes from GSL quadrature,
+/// differentiation and root finding (the generic path a plugin author gets).
+class RigidPressureLaw final : public rigidity::PressureLawMaterial {
+ public:
+  RigidPressureLaw() : PressureLawMaterial(1.0) {}
+  [[nodiscard]] std::string_view model() const override { return "rigid_as_pressure_law"; }
+  [[nodiscard]] double pressure_law(double s) const override { return 0.5 * (1.0 / (s * s) - 1.0); }
+};
+
+const char* const kModels[] = {"rigid", "hooke", "rigid_fluid", "constant_sound_speed"};
+
+/// Stretches spread over compression and traction, as ln s.
+std::vector<rigidity::Stretch> stretches(const rigidity::Material& m) {
+  std::vector<rigidity::Stretch> out;
+  const double hi = std::min(m.admissible().log_max, 1.0);
+  for (int i = 0; i < 64; ++i) out.push_back(rigidity::Stretch::from_log(-1.0 + (hi + 1.0) * i / 63.0));
+  return out;
+}
+
+template <class Eval>
+void evaluate(benchmark::State& state, const rigidity::Material& m, Eval eval) {
+  const std::vector<rigidity::Stretch> grid = stretches(m);
+  for (auto _ : state)
+    for (rigidity::Stretch s : grid) benchmark::DoNotOptimize(eval(m, s));
+  state.SetItemsProcessed(static_cast<long>(state.iterations()) * static_cast<long>(grid.size()));
+}
+
+void register_material(const std::string& label, std::shared_ptr<const rigidity::Material> m) {
+  using rigidity::Material;
+  using rigidity::Stretch;
+  benchmark::RegisterBenchmark(("pressure/" + label).c_str(), [m](benchmark::State& st) {
+    evaluate(st, *m, [](const Material& mm, Stretch s) { return mm.pressure(s); });
+  });
+  benchmark::RegisterBenchmark(("energy_density/" + label).c_str(), [m](benchmark::State& st) {
+    evaluate(st, *m, [](const Material& mm, Stretch s) { return mm.energy_density(s); });
+  });
+  benchmark::RegisterBenchmark(("sound_speed/" + label).c_str(), [m](benchmark::State& st) {
+    evaluate(st, *m, [](const Material& mm, Stretch s) { return mm.sound_speed(s); });
+  });
+  benchmark::RegisterBenchmark(("riemann_psi/" + label).c_str(), [m](benchmark::State& st) {
+    evaluate(st, *m, [](const Material& mm, Stretch s) { return mm.riemann_psi(s); });
+  });
+  benchmark::RegisterBenchmark(("stretch_at_pressure/" + label).c_str(), [m](benchmark::State& st) {
+    evaluate(st, *m, [](const Material& mm, Stretch s) { return mm.stretch_at_pressure(mm.pressure(s)).value.log(); });
+  });
+  benchmark::RegisterBenchmark(("stretch_at_psi/" + label).c_str(), [m](benchmark::State& st) {
+    evaluate(st, *m, [](const Material& mm, Stretch s) { return mm.stretch_at_psi(mm.riemann_psi(s)).value.log(); });
+  });
+}
+
+/// One exact Riemann problem: two bars at ±0.3 c of materials a and b colliding.
+void register_riemann(const std::string& a, const std::string& b) {
+  const auto ma = make(a), mb = make(b);
+  benchmark::RegisterBenchmark(("riemann/" + a + "|" + b).c_str(), [ma, mb](benchmark::State& st) {
+    const rigidity::State left{std::atanh(0.3), rigidity::Stretch::natural()};
+    const rigidity::State right{-std::atanh(0.3), rigidity::Stretch::from_value(0.95)};
+    for (auto _ : st) benchmark::DoNotOptimize(rigidity::solve_riemann(*ma, left, *mb, right, 0.0).pressure);
+    st.SetItemsProcessed(static_cast<long>(st.iterations()));
+  });
+}
+
+const bool registered = [] {
+  for (const char* model : kModels) register_material(model, make(model));
+  register_material("rigid_as_pressure_law(numeric)", std::make_shared<const RigidPressureLaw>());
+  for (const char* a : kModels)
+    for (const char* b : kModels) register_riemann(a, b);
+  return true;
+}();
+
+}  // namespace

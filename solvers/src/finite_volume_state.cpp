@@ -1,0 +1,178 @@
+// Kernels of the finite-volume baseline: conserved variables and their fluxes,
+// the recovery of (φ, s) from U, the HLL flux and the slope limiter.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "rigidity/solvers/finite_volume.hpp"
+
+namespace rigidity::finite_volume {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+/// Largest rapidity the recovery considers: sinh and cosh stay finite (γ ≈ 5e303).
+constexpr double kMaxRapidity = 700.0;
+constexpr int kMaxIterations = 200;
+
+/// ln cosh φ, without overflow and exact for small φ.
+double log_cosh(double phi) {
+  const double a = std::abs(phi);
+  return a + std::log1p(std::exp(-2.0 * a)) - std::log(2.0);
+}
+
+/// acosh(e^d) for d ≥ 0: the rapidity at which cosh φ = e^d.
+double acosh_of_exp(double d) {
+  if (d <= 0.0) return 0.0;
+  // acosh y = ln(y + sqrt(y² − 1)) = d + ln(1 + sqrt(1 − e^{−2d})); for small d, sqrt(2 d) leads.
+  if (d < 1e-8) return std::sqrt(2.0 * d);
+  return d + std::log1p(std::sqrt(-std::expm1(-2.0 * d)));
+}
+
+/// The momentum per unit label G(φ) = (e+p) s sinh φ along s = L cosh φ, and dG/dφ.
+struct MomentumCurve {
+  const Material* material;
+  double log_labels;  ///< ln L, L = s/γ
+
+  [[nodiscard]] Stretch stretch(double phi) const { return Stretch::from_log(log_labels + log_cosh(phi)); }
+
+  /// (e+p) s at the stretch of rapidity φ.
+  [[nodiscard]] double enthalpy_per_label(double phi) const {
+    const Stretch s = stretch(phi);
+    return material->enthalpy_density(s) * s.value();
+  }
+
+  [[nodiscard]] double value(double phi) const { return enthalpy_per_label(phi) * std::sinh(phi); }
+
+  /// G and G' = (e+p) s (1 + (1 − c_s²) sinh² φ)/cosh φ.
+  void evaluate(double phi, double& g, double& dg) const {
+    const Stretch s = stretch(phi);
+    const double h = material->enthalpy_density(s) * s.value();
+    const double c = material->sound_speed(s);
+    const double sh = std::sinh(phi);
+    g = h * sh;
+    dg = h * (1.0 + (1.0 - c) * (1.0 + c) * sh * sh) / std::cosh(phi);
+  }
+};
+
+Recovered failed(Status status) {
+  Recovered r;
+  r.status = status;
+  return r;
+}
+
+}  // namespace
+
+Conserved conserved(const Material& m, const State& st) {
+  const double s = st.stretch.value();
+  return Conserved{s / std::cosh(st.rapidity), m.enthalpy_density(st.stretch) * s * std::sinh(st.rapidity)};
+}
+
+Flux flux(const Material& m, const State& st) { return Flux{-std::tanh(st.rapidity), m.pressure(st.stretch)}; }
+
+double energy_per_label(const Material& m, const State& st) {
+  // ((e+p)γ² − p) s/γ = (e+p) s cosh φ − p s / cosh φ
+  const double s = st.stretch.value();
+  const double ch = std::cosh(st.rapidity);
+  return m.enthalpy_density(st.stretch) * s * ch - m.pressure(st.stretch) * s / ch;
+}
+
+Recovered recover_state(const Material& m, const Conserved& u, double rapidity_guess) {
+  const double labels = u[0], momentum = u[1];
+  if (!(labels > 0.0) || !std::isfinite(labels) || !std::isfinite(momentum)) return failed(Status::out_of_range);
+  const double log_labels = std::log(labels);
+  const double target = std::abs(momentum);
+  const double sign = momentum < 0.0 ? -1.0 : 1.0;
+  const MomentumCurve curve{&m, log_labels};
+
+  // Stretches the state may take: the admissible range, cut at the parting stretch
+  // of a material that cavitates.
+  const StretchRange range = m.admissible();
+  double log_cap = range.log_max;
+  const bool parts = m.cavitation_pressure() > -kInf;
+  if (parts) {
+    const Solved<Stretch> parting = m.stretch_at_pressure(m.cavitation_pressure());
+    if (parting.ok()) log_cap = std::min(log_cap, parting.value.log());
+  }
+  const auto clamped = [&]() {
+    // At the parting stretch, with the momentum kept: (e+p) s sinh φ = U₁.
+    Recovered r;
+    const Stretch s = Stretch::from_log(log_cap);
+    const double h = m.enthalpy_density(s) * s.value();
+    r.state = State{sign * std::asinh(target / h), s};
+    r.cavitated = true;
+    if (!std::isfinite(r.state.rapidity)) r.status = Status::out_of_range;
+    return r;
+  };
+
+  // The bracket in |φ|: s = L cosh φ between the bounds of the range.
+  double lo = 0.0, hi = kMaxRapidity;
+  if (std::isfinite(range.log_min) && log_labels < range.log_min) lo = acosh_of_exp(range.log_min - log_labels);
+  if (std::isfinite(log_cap)) {
+    if (log_labels > log_cap) {
+      if (parts) return clamped();
+      return failed(Status::out_of_range);
+    }
+    hi = std::min(hi, acosh_of_exp(log_cap - log_labels));
+  }
+  if (lo > hi) return failed(Status::out_of_range);
+  if (target == 0.0 && lo == 0.0) return Recovered{State{0.0, curve.stretch(0.0)}, Status::ok, false};
+  if (lo > 0.0 && curve.value(lo) > target) return failed(Status::out_of_range);
+
+  // Newton on G(φ) = |U₁| from the guess, safeguarded: a step that leaves the
+  // bracket [lo, hi] bisects it, or, while no point above the root is known, doubles
+  // φ outwards (G may underflow far beyond the root, so the cap is a poor first try).
+  bool hi_known = false;  // G(hi) ≥ |U₁| established
+  double phi = std::abs(rapidity_guess);
+  if (!(phi > lo && phi < hi)) {
+    phi = std::min(lo + target / curve.enthalpy_per_label(lo), 0.5 * (lo + hi));  // G ≈ h φ for small φ
+    if (!(phi > lo)) phi = 0.5 * (lo + hi);
+  }
+  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+    double g = 0.0, dg = 0.0;
+    curve.evaluate(phi, g, dg);
+    const double residual = g - target;
+    if (residual == 0.0) return Recovered{State{sign * phi, curve.stretch(phi)}, Status::ok, false};
+    if (residual < 0.0) {
+      lo = phi;
+      if (phi >= hi) {
+        // Even the fastest admissible state at this label density has less momentum.
+        if (parts && hi < kMaxRapidity) return clamped();
+        return failed(Status::out_of_range);
+      }
+    } else {
+      hi = phi;
+      hi_known = true;
+    }
+    double next = phi - residual / dg;
+    if (!(next > lo && next < hi)) next = hi_known ? 0.5 * (lo + hi) : std::min(2.0 * std::max(phi, 0.5), hi);
+    const bool converged =
+        std::abs(next - phi) <= 2.0 * kEps * std::abs(next) || (hi_known && hi - lo <= 2.0 * kEps * hi);
+    phi = next;
+    if (converged) return Recovered{State{sign * phi, curve.stretch(phi)}, Status::ok, false};
+  }
+  return failed(Status::not_converged);
+}
+
+FaceFlux hll_flux(const Material& mL, const State& left, const Material& mR, const State& right) {
+  const double slowest = std::min(characteristic_speed(mL, left, -1), characteristic_speed(mR, right, -1));
+  const double fastest = std::max(characteristic_speed(mL, left, +1), characteristic_speed(mR, right, +1));
+  // In label coordinates S− < 0 < S+ always: the HLL flux at X/t = 0 is the
+  // flux of the intermediate state (Toro eq. 10.21).
+  const Flux f = (fastest * flux(mL, left) - slowest * flux(mR, right) +
+                  slowest * fastest * (conserved(mR, right) - conserved(mL, left))) /
+                 (fastest - slowest);
+  FaceFlux out;
+  out.velocity_left = out.velocity_right = -f[0];
+  out.pressure = f[1];
+  return out;
+}
+
+double mc_limited_slope(double a, double b) {
+  if (!(a * b > 0.0)) return 0.0;
+  const double magnitude = std::min({2.0 * std::abs(a), 2.0 * std::abs(b), 0.5 * std::abs(a + b)});
+  return a > 0.0 ? magnitude : -magnitude;
+}
+
+}  // namespace rigidity::finite_volume
