@@ -44,8 +44,9 @@ Solved<double> find_root(const F& f, double lo, double hi) {
 /// Expands from `start` in direction `dir` (±1) until f takes the wanted sign
 /// (f < 0 for dir = -1, f > 0 for dir = +1), staying inside [limit_lo, limit_hi].
 template <class F>
-Solved<double> expand_bracket(const F& f, double start, int dir, double limit_lo, double limit_hi) {
-  double step = 0.5;
+Solved<double> expand_bracket(const F& f, double start, int dir, double limit_lo, double limit_hi,
+                              double first_step = 0.5) {
+  double step = first_step;
   double z = start;
   for (int i = 0; i < 200; ++i) {
     z = std::clamp(z + dir * step, limit_lo, limit_hi);
@@ -80,10 +81,22 @@ Solved<double> shock_star_rapidity(const Material& m, const State& outer, Stretc
            (p_star - p_outer) * (label_density(st) - labels_outer);
   };
   // Increasing away from the outer rapidity on the family's side: g(d) = H(φ_outer + family d).
+  // The rarefaction curve's rapidity change |ΔΨ| agrees with the shock's to second order in
+  // the strength: bracket the root tightly around it, so that Brent needs few steps.
   const auto g = [&](double d) { return hugoniot(outer.rapidity + family * d); };
-  const Solved<double> far = expand_bracket(g, 0.0, +1, 0.0, 1.0e3);
-  if (!far.ok()) return far;
-  const Solved<double> d = find_root(g, 0.0, far.value);
+  const double guess = std::abs(m.riemann_psi(star) - m.riemann_psi(outer.stretch));
+  const double step = 0.02 * guess + 1e-300;
+  double lo = 0.0, hi = guess;
+  if (g(guess) > 0.0) {
+    const Solved<double> below = expand_bracket(g, guess, -1, 0.0, guess, step);
+    if (below.ok()) lo = below.value;
+  } else {
+    lo = guess;
+    const Solved<double> above = expand_bracket(g, guess, +1, guess, 1.0e3, step);
+    if (!above.ok()) return above;
+    hi = above.value;
+  }
+  const Solved<double> d = g(lo) == 0.0 ? Solved<double>{lo, Status::ok} : find_root(g, lo, hi);
   if (!d.ok()) return d;
   return Solved<double>{outer.rapidity + family * d.value, Status::ok};
 }
@@ -198,14 +211,25 @@ RiemannSolution solve_riemann(const Material& left_material, const State& left, 
       if (f(z_hi) == 0.0) return parted_pair(lc, rc, min_pressure);
     }
   }
-  const double start = std::min(left.stretch.log(), z_hi);
+  // Start from the left state, or for one material on both sides from the star state
+  // the rarefaction curves would give (exact for weak waves), with a step to match.
+  double start = std::min(left.stretch.log(), z_hi);
+  double first_step = 0.5;
+  if (&left_material == &right_material) {
+    const double psi_guess = 0.5 * (lc.invariant() - rc.invariant());
+    const Solved<Stretch> guess = left_material.stretch_at_psi(std::min(psi_guess, left_material.psi_max()));
+    if (guess.ok()) {
+      first_step = 1e-3 + 0.05 * std::abs(guess.value.log() - start);
+      start = std::min(guess.value.log(), z_hi);
+    }
+  }
   double lo = start, hi = start;
   const double f_start = f(start);
   if (f_start == 0.0) {
     lo = hi = start;
   } else if (f_start > 0.0) {
     hi = start;
-    const Solved<double> b = expand_bracket(f, start, -1, range.log_min, z_hi);
+    const Solved<double> b = expand_bracket(f, start, -1, range.log_min, z_hi, first_step);
     if (!b.ok()) {
       // Even at the largest reachable compression the left state outruns the right.
       const Material& weaker = left_material.psi_max() <= right_material.psi_max() ? left_material : right_material;
@@ -214,7 +238,7 @@ RiemannSolution solve_riemann(const Material& left_material, const State& left, 
     lo = b.value;
   } else {
     lo = start;
-    const Solved<double> b = expand_bracket(f, start, +1, range.log_min, z_hi);
+    const Solved<double> b = expand_bracket(f, start, +1, range.log_min, z_hi, first_step);
     if (!b.ok()) return RiemannSolution{Status::no_bracket, false, 0.0, {}, {}, 0.0, 0.0};
     hi = b.value;
   }
