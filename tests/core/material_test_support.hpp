@@ -39,7 +39,7 @@ inline std::shared_ptr<const Material> make_material(std::string_view name,
     if (spec.default_number) parameters.set(spec.name, *spec.default_number);
   for (const auto& [key, value] : values) {
     const auto spec = std::find_if(info.parameters.begin(), info.parameters.end(),
-                                   [&](const ParameterSpec& p) { return p.name == key; });
+                                   [&key = key](const ParameterSpec& p) { return p.name == key; });
     if (spec == info.parameters.end())
       throw std::invalid_argument(std::string(name) + " has no parameter '" + key + "'");
     if (const std::string rule = spec->range_violation(value); !rule.empty())
