@@ -79,7 +79,7 @@ TEST(MaterialRegistry, EveryMaterialDeclaresItsParametersAndNamesItself) {
        {std::pair{"hooke", "wave_speed"}, std::pair{"constant_sound_speed", "sound_speed"}}) {
     const MaterialInfo& info = MaterialRegistry::instance().at(model);
     const auto p = std::find_if(info.parameters.begin(), info.parameters.end(),
-                                [&](const ParameterSpec& spec) { return spec.name == key; });
+                                [&key = key](const ParameterSpec& spec) { return spec.name == key; });
     ASSERT_NE(p, info.parameters.end()) << model;
     EXPECT_TRUE(p->required);
     EXPECT_EQ(p->dimension, Dimension::velocity);
