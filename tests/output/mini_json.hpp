@@ -14,6 +14,15 @@
 namespace mini_json {
 
 struct Value {
+  // Special members declared here and defined below, where Value is complete: a vector
+  // of pairs holding Value must not be instantiated while Value is still incomplete.
+  Value();
+  Value(const Value&);
+  Value(Value&&) noexcept;
+  Value& operator=(const Value&);
+  Value& operator=(Value&&) noexcept;
+  ~Value();
+
   enum class Type { null, boolean, number, string, array, object } type = Type::null;
   bool boolean = false;
   double number = 0.0;
@@ -39,6 +48,13 @@ struct Value {
     return out;
   }
 };
+
+inline Value::Value() = default;
+inline Value::Value(const Value&) = default;
+inline Value::Value(Value&&) noexcept = default;
+inline Value& Value::operator=(const Value&) = default;
+inline Value& Value::operator=(Value&&) noexcept = default;
+inline Value::~Value() = default;
 
 class Parser {
  public:
