@@ -184,17 +184,6 @@ struct SampleTime {
   int index;
 };
 
-double energy_per_label(const Material& m, const State& st) {
-  // ((e+p)γ² − p) s/γ = (e+p) s cosh φ − p s / cosh φ
-  const double s = st.stretch.value();
-  const double ch = std::cosh(st.rapidity);
-  return m.enthalpy_density(st.stretch) * s * ch - m.pressure(st.stretch) * s / ch;
-}
-
-double momentum_per_label(const Material& m, const State& st) {
-  return m.enthalpy_density(st.stretch) * st.stretch.value() * std::sinh(st.rapidity);
-}
-
 bool same_state(const State& a, const State& b) {
   return std::abs(a.rapidity - b.rapidity) <= 4.0 * kEps * (1.0 + std::abs(a.rapidity)) &&
          std::abs(a.stretch.log() - b.stretch.log()) <= 4.0 * kEps * (1.0 + std::abs(a.stretch.log()));
@@ -283,15 +272,6 @@ class Tracker {
                    const Region& left_region, const Region& right_region, double t, double X, double x);
   void set_attach(int end, Attach attach, int partner, double t);
   void flush_wall(int side, double t);
-  [[noreturn]] void inadmissible(const RiemannSolution& sol, const Material& m, double t, double x) const;
-  void check(const RiemannSolution& sol, const Material& m, double t, double x) const {
-    if (sol.status == Status::out_of_range) inadmissible(sol, m, t, x);
-    if (sol.status != Status::ok) {
-      throw NumericalError("the Riemann problem at t = " + number(t) + ", x = " + number(x) +
-                           " could not be solved (" + std::string(to_string(sol.status)) + ")");
-    }
-  }
-
   // ---- outputs --------------------------------------------------------------------------
   void record_segment(Node& n, double t);
   void account_front_end(int id, double t);
@@ -775,24 +755,6 @@ void Tracker::flush_wall(int side, double t) {
   w.pressure_since = t;
 }
 
-void Tracker::inadmissible(const RiemannSolution& sol, const Material& m, double t, double x) const {
-  std::ostringstream os;
-  os.precision(12);
-  os << "no classical solution at t = " << t << ", x = " << x << ": an impact at relative speed "
-     << std::tanh(sol.impact_rapidity) << " c would crush the material '" << m.model() << "' to zero length";
-  if (std::isfinite(sol.demanded_psi)) {
-    // Linearly degenerate: the compressed state would need Ψ = demanded ≥ Ψ_max; tanh Ψ is
-    // the impact speed relative to the compressed material (the wall's frame for a wall).
-    os << ": it demands an impact speed v = tanh(Psi) = " << std::tanh(sol.demanded_psi)
-       << " c relative to the compressed material, at or above the material's limit " << std::tanh(sol.limit_psi)
-       << " c";
-  } else {
-    os << " (its limit: impact speed " << std::tanh(sol.limit_psi) << " c relative to the compressed material)";
-  }
-  if (m.model() == "hooke") os << "; for hooke the limit is the wave speed V = " << std::tanh(sol.limit_psi) << " c";
-  throw InadmissibleError(os.str());
-}
-
 void Tracker::split_piece(int left_node, int right_node, const State& left_state, const State& right_state,
                           const Region& left_region, const Region& right_region, double t, double X, double x) {
   // The piece parts between left_node and right_node (either may be an end of the
@@ -912,7 +874,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     } else {
       sol = solve_free_end(m, st, side);
     }
-    check(sol, m, t, x);
+    require_solved(sol, m, t, x);
     if (sol.parted && e.attach == Attach::boundary) {
       Wall& w = walls_[e.partner];
       w.attached = kNone;
@@ -928,7 +890,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
       min_p = std::max(mL->cavitation_pressure(), mR->cavitation_pressure());
     }
     sol = solve_riemann(*mL, left_region.state, *mR, right_region.state, min_p);
-    check(sol, sol.status == Status::out_of_range && mR->psi_max() < mL->psi_max() ? *mR : *mL, t, x);
+    require_solved(sol, sol.status == Status::out_of_range && mR->psi_max() < mL->psi_max() ? *mR : *mL, t, x);
   }
 
   // Emit the waves.
@@ -1076,7 +1038,7 @@ void Tracker::account_front_end(int id, double t) {
   if (left.material == nullptr || right.material == nullptr) return;
   // Energy removed per unit time at a front moving at m = dX/dt: m[E] − [F], with
   // E the energy and F = p v its flux per unit label (SPEC §1).
-  const double jump_E = energy_per_label(*right.material, right.state) - energy_per_label(*left.material, left.state);
+  const double jump_E = energy_density(*right.material, right.state) - energy_density(*left.material, left.state);
   const double flux_right = right.material->pressure(right.state.stretch) * std::tanh(right.state.rapidity);
   const double flux_left = left.material->pressure(left.state.stretch) * std::tanh(left.state.rapidity);
   dissipated_ += (n.dXdt * jump_E - (flux_right - flux_left)) * (t - n.t0);
@@ -1157,8 +1119,8 @@ void Tracker::totals(double t, double& energy, double& momentum) const {
     for (int n = piece.left_end; nodes_[n].kind != NodeKind::right_end; n = nodes_[n].next) {
       const Node& node = nodes_[n];
       const double dX = nodes_[node.next].X_at(t) - node.X_at(t);
-      energy += dX * energy_per_label(*node.right.material, node.right.state);
-      momentum += dX * momentum_per_label(*node.right.material, node.right.state);
+      energy += dX * energy_density(*node.right.material, node.right.state);
+      momentum += dX * momentum_density(*node.right.material, node.right.state);
     }
   }
 }
@@ -1258,8 +1220,8 @@ RunResult Tracker::run() {
         const Material& m = *node.right.material;
         mass += m.rest_density() * dX;
         mass_velocity += m.rest_density() * dX * std::tanh(node.right.state.rapidity);
-        r.energy += dX * energy_per_label(m, node.right.state);
-        r.momentum += dX * momentum_per_label(m, node.right.state);
+        r.energy += dX * energy_density(m, node.right.state);
+        r.momentum += dX * momentum_density(m, node.right.state);
       }
       r.velocity_mean = mass > 0.0 ? mass_velocity / mass : 0.0;
       result_.bodies.push_back(r);

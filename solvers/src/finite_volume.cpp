@@ -156,7 +156,6 @@ class Scheme {
 
   // ---- errors -------------------------------------------------------------------------------
   void check(const RiemannSolution& sol, const Material& m, double t, double x) const;
-  [[noreturn]] void inadmissible(const RiemannSolution& sol, const Material& m, double t, double x) const;
   [[nodiscard]] std::string where_is_cell(int c) const;
 
   // ---- outputs -----------------------------------------------------------------------------
@@ -659,27 +658,7 @@ std::string Scheme::where_is_cell(int c) const {
 }
 
 void Scheme::check(const RiemannSolution& sol, const Material& m, double t, double x) const {
-  if (sol.status == Status::out_of_range) inadmissible(sol, m, t, x);
-  if (sol.status != Status::ok) {
-    throw NumericalError("finite_volume: the Riemann problem at t = " + number(t) + ", x = " + number(x) +
-                         " could not be solved (" + std::string(to_string(sol.status)) + ")");
-  }
-}
-
-void Scheme::inadmissible(const RiemannSolution& sol, const Material& m, double t, double x) const {
-  std::ostringstream os;
-  os.precision(12);
-  os << "no classical solution at t = " << t << ", x = " << x << ": an impact at relative speed "
-     << std::tanh(sol.impact_rapidity) << " c would crush the material '" << m.model() << "' to zero length";
-  if (std::isfinite(sol.demanded_psi)) {
-    os << ": it demands an impact speed v = tanh(Psi) = " << std::tanh(sol.demanded_psi)
-       << " c relative to the compressed material, at or above the material's limit " << std::tanh(sol.limit_psi)
-       << " c";
-  } else {
-    os << " (its limit: impact speed " << std::tanh(sol.limit_psi) << " c relative to the compressed material)";
-  }
-  if (m.model() == "hooke") os << "; for hooke the limit is the wave speed V = " << std::tanh(sol.limit_psi) << " c";
-  throw InadmissibleError(os.str());
+  require_solved(sol, m, t, x);
 }
 
 // =====================================================================================
@@ -758,7 +737,7 @@ void Scheme::sample(const SampleTime& st) {
 void Scheme::totals(double& energy, double& momentum) const {
   energy = momentum = 0.0;
   for (std::size_t c = 0; c < state_.size(); ++c) {
-    energy += width_[c] * finite_volume::energy_per_label(*material_[c], state_[c]);
+    energy += width_[c] * energy_density(*material_[c], state_[c]);
     momentum += width_[c] * u_[c][1];
   }
 }
@@ -850,7 +829,7 @@ RunResult Scheme::run() {
       const double rest_mass = material_[k]->rest_density() * width_[k];
       mass += rest_mass;
       mass_velocity += rest_mass * std::tanh(state_[k].rapidity);
-      r.energy += width_[k] * finite_volume::energy_per_label(*material_[k], state_[k]);
+      r.energy += width_[k] * energy_density(*material_[k], state_[k]);
       r.momentum += width_[k] * u_[k][1];
     }
     r.velocity_mean = mass > 0.0 ? mass_velocity / mass : 0.0;

@@ -65,18 +65,11 @@ Recovered failed(Status status) {
 }  // namespace
 
 Conserved conserved(const Material& m, const State& st) {
-  const double s = st.stretch.value();
-  return Conserved{s / std::cosh(st.rapidity), m.enthalpy_density(st.stretch) * s * std::sinh(st.rapidity)};
+  return Conserved{label_density(st), momentum_density(m, st)};
 }
 
 Flux flux(const Material& m, const State& st) { return Flux{-std::tanh(st.rapidity), m.pressure(st.stretch)}; }
 
-double energy_per_label(const Material& m, const State& st) {
-  // ((e+p)γ² − p) s/γ = (e+p) s cosh φ − p s / cosh φ
-  const double s = st.stretch.value();
-  const double ch = std::cosh(st.rapidity);
-  return m.enthalpy_density(st.stretch) * s * ch - m.pressure(st.stretch) * s / ch;
-}
 
 Recovered recover_state(const Material& m, const Conserved& u, double rapidity_guess) {
   const double labels = u[0], momentum = u[1];

@@ -6,6 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
+#include <string>
+
+#include "rigidity/errors.hpp"
 
 namespace rigidity {
 
@@ -56,12 +60,6 @@ Solved<double> expand_bracket(const F& f, double start, int dir, double limit_lo
     step *= 2.0;
   }
   return Solved<double>::failure(Status::no_bracket);
-}
-
-/// Conserved label density s/γ and momentum density (e+p) s γ v per unit label (SPEC §1).
-double label_density(const State& st) { return st.stretch.value() / std::cosh(st.rapidity); }
-double momentum_density(const Material& m, const State& st) {
-  return m.enthalpy_density(st.stretch) * st.stretch.value() * std::sinh(st.rapidity);
 }
 
 /// The rapidity behind a shock of family `family` (−1: C−, +1: C+) that takes the
@@ -314,6 +312,43 @@ RiemannSolution solve_free_end(const Material& m, const State& state, Side side)
   out.status = pt.status;
   out.left = out.right = State{pt.rapidity, pt.stretch};
   return out;
+}
+
+double label_density(const State& st) { return st.stretch.value() / std::cosh(st.rapidity); }
+
+double momentum_density(const Material& m, const State& st) {
+  return m.enthalpy_density(st.stretch) * st.stretch.value() * std::sinh(st.rapidity);
+}
+
+double energy_density(const Material& m, const State& st) {
+  // ((e+p)γ² − p) s/γ = (e+p) s cosh φ − p s / cosh φ
+  const double s = st.stretch.value();
+  const double ch = std::cosh(st.rapidity);
+  return m.enthalpy_density(st.stretch) * s * ch - m.pressure(st.stretch) * s / ch;
+}
+
+void require_solved(const RiemannSolution& sol, const Material& m, double t, double x) {
+  if (sol.status == Status::ok) return;
+  std::ostringstream os;
+  os.precision(12);
+  if (sol.status != Status::out_of_range) {
+    os << "the Riemann problem at t = " << t << ", x = " << x << " could not be solved (" << to_string(sol.status)
+       << ")";
+    throw NumericalError(os.str());
+  }
+  os << "no classical solution at t = " << t << ", x = " << x << ": an impact at relative speed "
+     << std::tanh(sol.impact_rapidity) << " c would crush the material '" << m.model() << "' to zero length";
+  if (std::isfinite(sol.demanded_psi)) {
+    // Linearly degenerate: the compressed state would need Ψ = demanded ≥ Ψ_max; tanh Ψ is
+    // the impact speed relative to the compressed material (the wall's frame for a wall).
+    os << ": it demands an impact speed v = tanh(Psi) = " << std::tanh(sol.demanded_psi)
+       << " c relative to the compressed material, at or above the material's limit " << std::tanh(sol.limit_psi)
+       << " c";
+  } else {
+    os << " (its limit: impact speed " << std::tanh(sol.limit_psi) << " c relative to the compressed material)";
+  }
+  if (m.model() == "hooke") os << "; for hooke the limit is the wave speed V = " << std::tanh(sol.limit_psi) << " c";
+  throw InadmissibleError(os.str());
 }
 
 FrontSpeeds characteristic_speeds(const Material& m, const State& state, int family) {

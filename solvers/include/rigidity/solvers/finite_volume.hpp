@@ -72,8 +72,6 @@ using Flux = Eigen::Vector2d;
 [[nodiscard]] Conserved conserved(const Material& material, const State& state);
 /// F of a state.
 [[nodiscard]] Flux flux(const Material& material, const State& state);
-/// Energy per unit label ((e+p)γ² − p) s/γ (SPEC §1), rest energy included.
-[[nodiscard]] double energy_per_label(const Material& material, const State& state);
 
 /// A state recovered from U.
 struct Recovered {

@@ -109,6 +109,17 @@ struct FrontSpeeds {
 /// Lab-frame speed dx/dt of that characteristic.
 [[nodiscard]] double characteristic_lab_speed(const Material& material, const State& state, int family);
 
+/// Conserved densities per unit label (SPEC §1): labels s/γ (the lab length of a unit
+/// of label), momentum (e+p) s γ v, energy ((e+p)γ² − p) s/γ, rest energy included.
+[[nodiscard]] double label_density(const State& state);
+[[nodiscard]] double momentum_density(const Material& material, const State& state);
+[[nodiscard]] double energy_density(const Material& material, const State& state);
+
+/// Does nothing for a solved problem; otherwise throws InadmissibleError (no classical
+/// solution: the message names the impact speed and the material's limit, for hooke
+/// its wave speed V) or NumericalError, naming the place (t, x) of the interaction.
+void require_solved(const RiemannSolution& solution, const Material& material, double t, double x);
+
 /// A shock between an outer state and a star state (same material), family -1 or +1.
 [[nodiscard]] FrontSpeeds shock_speeds(const Material& material, const State& outer, const State& star, int family);
 
