@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "rigidity/errors.hpp"
+#include "rigidity/plugins.hpp"
 #include "rigidity/registry.hpp"
 #include "rigidity/spelling.hpp"
 #include "rigidity/version.hpp"
@@ -166,6 +167,7 @@ int dispatch(const std::vector<std::string>& args) {
     if (!near.empty()) message += " (did you mean '" + near + "'?)";
     throw usage_error("", message);
   }
+  load_environment_plugins();  // RIGIDITY_PLUGIN_PATH (plugins.hpp): their materials are every command's
   return command->run(std::span<const std::string>(args).subspan(1), std::cout);
 }
 

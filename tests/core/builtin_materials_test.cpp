@@ -382,8 +382,9 @@ TEST(SmallStrain, PressureKeepsFullPrecisionAtStrainOneInATrillion) {
       EXPECT_NEAR(back.value.strain(), eps, kRelTol * std::abs(eps)) << c.model << " inverse at strain " << eps;
     }
   }
-  // Every built-in is in the table.
+  // Every built-in is in the table (but `tabulated`, whose law is a table: tabulated_test.cpp).
   for (const std::string& name : kBuiltinMaterials) {
+    if (name == "tabulated") continue;
     EXPECT_TRUE(std::any_of(cases.begin(), cases.end(), [&](const SmallStrainSeries& c) { return c.model == name; }))
         << name;
   }

@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rigidity/units.hpp"
@@ -65,9 +66,15 @@ class ParameterValues {
   [[nodiscard]] const std::map<std::string, double>& numbers() const { return numbers_; }
   [[nodiscard]] const std::map<std::string, std::string>& texts() const { return texts_; }
 
+  /// The directory a relative file name among the texts (a table) is taken from: the scene
+  /// file's (the loader sets it); empty for the working directory.
+  void set_directory(std::string directory) { directory_ = std::move(directory); }
+  [[nodiscard]] const std::string& directory() const { return directory_; }
+
  private:
   std::map<std::string, double> numbers_;
   std::map<std::string, std::string> texts_;
+  std::string directory_;
 };
 
 /// The `rest_density` declaration every material shares (ρ00, default 1).

@@ -13,7 +13,12 @@
 ///
 /// Adding a material touches no central list. A duplicate name is an error naming
 /// both places; an unknown name lists the registered ones and the closest match.
+///
+/// A plugin (plugins.hpp) registers its materials with the same macro. The registration passes
+/// the plugin ABI version the material was compiled against before anything whose layout
+/// could differ, so that a material built against another version is refused, not misread.
 
+#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
@@ -24,6 +29,11 @@
 #include "rigidity/parameters.hpp"
 
 namespace rigidity {
+
+/// The version of everything a plugin and the framework share (Material, MaterialInfo,
+/// ParameterSpec, ParameterValues, Stretch, Solved, NumericMaterial, PiecewiseChebyshev...):
+/// bump it whenever one of their layouts or virtual functions changes.
+inline constexpr int kPluginAbiVersion = 1;
 
 using MaterialFactory = std::function<std::shared_ptr<const Material>(const ParameterValues&)>;
 
@@ -44,6 +54,12 @@ class MaterialRegistry {
   /// check()) during static initialisation, and thrown as std::runtime_error after it.
   bool add(MaterialInfo info);
 
+  /// What RIGIDITY_REGISTER_MATERIAL calls: add(describe(file, line)) if `abi_version` is this
+  /// framework's kPluginAbiVersion; else `describe` is not called (its MaterialInfo may not be
+  /// ours) and the mismatch is a conflict, as a duplicate is.
+  using Describe = MaterialInfo (*)(const char* file, int line);
+  bool add_compiled(int abi_version, Describe describe, const char* file, int line);
+
   /// \throws std::runtime_error naming both places if two materials share a name.
   void check() const;
 
@@ -59,11 +75,29 @@ class MaterialRegistry {
   /// Called by main() once static initialisation is over: later duplicates throw.
   void seal() { sealed_ = true; }
 
+  // ---- plugin loading (plugins.cpp) ------------------------------------------------
+  // The materials a library registers while it is being opened form a batch. During a batch a
+  // conflict is recorded even when sealed (an exception must not cross the dynamic loader),
+  // and the batch can be withdrawn if the plugin is refused.
+
+  /// Starts a batch. \pre no batch is open
+  void begin_batch();
+  /// The materials added since begin_batch(), in order.
+  [[nodiscard]] std::vector<const MaterialInfo*> batch_materials() const;
+  /// The conflicts recorded since begin_batch().
+  [[nodiscard]] std::vector<std::string> batch_conflicts() const;
+  /// Ends the batch: keeps its materials, or removes them again; its conflicts are dropped
+  /// either way (the plugin loader reports them).
+  void end_batch(bool keep);
+
  private:
   MaterialRegistry() = default;
-  std::vector<MaterialInfo> materials_;
+  std::deque<MaterialInfo> materials_;  ///< a deque: references stay valid as plugins add more
   std::vector<std::string> conflicts_;
   bool sealed_ = false;
+  bool in_batch_ = false;
+  std::size_t batch_first_material_ = 0;
+  std::size_t batch_first_conflict_ = 0;
 };
 
 /// The MaterialInfo of a material class that follows the pattern above.
@@ -87,6 +121,7 @@ MaterialInfo describe_material(const char* file, int line) {
 #define RIGIDITY_DETAIL_CONCAT(a, b) RIGIDITY_DETAIL_CONCAT2(a, b)
 
 /// Registers material class M (see above) under M::kName, recording file and line.
-#define RIGIDITY_REGISTER_MATERIAL(M)                                                     \
+#define RIGIDITY_REGISTER_MATERIAL(M)                                                         \
   [[maybe_unused]] static const bool RIGIDITY_DETAIL_CONCAT(rigidity_registered_, __LINE__) = \
-      ::rigidity::MaterialRegistry::instance().add(::rigidity::describe_material<M>(__FILE__, __LINE__))
+      ::rigidity::MaterialRegistry::instance().add_compiled(::rigidity::kPluginAbiVersion,    \
+                                                            &::rigidity::describe_material<M>, __FILE__, __LINE__)

@@ -14,10 +14,12 @@ namespace rigidity {
 
 /// Reads and validates a scene file. `overrides` are "key.path=value" strings from
 /// `--set` (list elements addressed by index: "bodies.0.velocity=0.8"), applied
-/// before validation. \throws InputError
+/// before validation. The plugins the scene lists, and those on RIGIDITY_PLUGIN_PATH, are
+/// loaded before its materials are read (plugins.hpp); relative paths in the scene (plugins,
+/// a `tabulated` material's table) start at the file's directory. \throws InputError
 [[nodiscard]] Scene load_scene_file(const std::string& path, const std::vector<std::string>& overrides = {});
 
-/// The same, from text; `source` names it in messages.
+/// The same, from text; `source` names it in messages; relative paths start at the working directory.
 [[nodiscard]] Scene load_scene_string(std::string_view text, const std::string& source,
                                       const std::vector<std::string>& overrides = {});
 

@@ -1,12 +1,12 @@
 #include "rigidity/registry.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <stdexcept>
 
 #include "rigidity/spelling.hpp"
 
 namespace rigidity {
-
 
 MaterialRegistry& MaterialRegistry::instance() {
   static MaterialRegistry registry;
@@ -18,12 +18,45 @@ bool MaterialRegistry::add(MaterialInfo info) {
     if (existing.name != info.name) continue;
     std::string conflict = "material '" + info.name + "' is registered twice: at " + existing.file + ":" +
                            std::to_string(existing.line) + " and at " + info.file + ":" + std::to_string(info.line);
-    if (sealed_) throw std::runtime_error(conflict);
+    if (sealed_ && !in_batch_) throw std::runtime_error(conflict);
     conflicts_.push_back(std::move(conflict));
     return false;
   }
   materials_.push_back(std::move(info));
   return true;
+}
+
+bool MaterialRegistry::add_compiled(int abi_version, Describe describe, const char* file, int line) {
+  if (abi_version == kPluginAbiVersion) return add(describe(file, line));
+  std::string conflict = "the material registered at " + std::string(file) + ":" + std::to_string(line) +
+                         " was compiled against rigidity plugin ABI " + std::to_string(abi_version) +
+                         ", this rigidity has plugin ABI " + std::to_string(kPluginAbiVersion);
+  if (sealed_ && !in_batch_) throw std::runtime_error(conflict);
+  conflicts_.push_back(std::move(conflict));
+  return false;
+}
+
+void MaterialRegistry::begin_batch() {
+  in_batch_ = true;
+  batch_first_material_ = materials_.size();
+  batch_first_conflict_ = conflicts_.size();
+}
+
+std::vector<const MaterialInfo*> MaterialRegistry::batch_materials() const {
+  std::vector<const MaterialInfo*> out;
+  for (std::size_t i = batch_first_material_; i < materials_.size(); ++i) out.push_back(&materials_[i]);
+  return out;
+}
+
+std::vector<std::string> MaterialRegistry::batch_conflicts() const {
+  return {conflicts_.begin() + static_cast<std::ptrdiff_t>(batch_first_conflict_), conflicts_.end()};
+}
+
+void MaterialRegistry::end_batch(bool keep) {
+  if (!keep)
+    materials_.erase(materials_.begin() + static_cast<std::ptrdiff_t>(batch_first_material_), materials_.end());
+  conflicts_.erase(conflicts_.begin() + static_cast<std::ptrdiff_t>(batch_first_conflict_), conflicts_.end());
+  in_batch_ = false;
 }
 
 void MaterialRegistry::check() const {

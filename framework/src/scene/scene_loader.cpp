@@ -19,6 +19,7 @@
 #include <system_error>
 
 #include "rigidity/default_scene.hpp"
+#include "rigidity/plugins.hpp"
 #include "rigidity/registry.hpp"
 #include "rigidity/scene_schema.hpp"
 #include "rigidity/spelling.hpp"
@@ -47,8 +48,8 @@ bool within_rounding(double a, double b, double scale) {
 
 class SceneBuilder {
  public:
-  SceneBuilder(Checker& checker, const Sources& sources, UnitSystem units)
-      : checker_(checker), sources_(sources), units_(units) {}
+  SceneBuilder(Checker& checker, const Sources& sources, UnitSystem units, std::filesystem::path directory)
+      : checker_(checker), sources_(sources), units_(units), directory_(std::move(directory)) {}
 
   Scene build(Checked& root) {
     Scene scene;
@@ -84,6 +85,7 @@ class SceneBuilder {
       const std::string& model = entry["model"].word;
       const MaterialInfo& info = MaterialRegistry::instance().at(model);  // the schema admits registered models only
       ParameterValues values;
+      values.set_directory(directory_.string());  // a relative file name (a table) is the scene's
       for (const ParameterSpec& spec : info.parameters) {
         const Checked* value = entry.find(spec.name);
         if (value == nullptr) continue;  // optional and without default: the material decides
@@ -294,6 +296,7 @@ class SceneBuilder {
   Checker& checker_;
   const Sources& sources_;
   UnitSystem units_;
+  std::filesystem::path directory_;  ///< of the scene file: relative paths in it start there
   std::set<std::string> material_names_;
   std::map<std::string, std::size_t> body_index_;  ///< body name → index
   std::vector<double> right_ends_;                 ///< lab x of each body's right end at t = 0
@@ -310,16 +313,37 @@ UnitSystem read_units(const YAML::Node& root, const schema::Key& schema, const S
   return UnitSystem::natural;
 }
 
-Scene load(std::string_view text, const std::string& source, const std::vector<std::string>& overrides) {
+/// Loads the plugins the scene lists (plugins.hpp), relative paths from `directory`, before
+/// its materials are checked: a scene may use the materials of the plugins it lists. True if
+/// it lists any.
+bool load_listed_plugins(const YAML::Node& root, const schema::Key& schema, const Sources& sources,
+                         const std::filesystem::path& directory) {
+  for (auto it = root.begin(); it != root.end(); ++it) {
+    if (!it->first.IsScalar() || it->first.Scalar() != "plugins") continue;
+    Checker checker(sources, UnitSystem::natural);
+    const Checked plugins = checker.check(it->second, *schema.field("plugins"), {"plugins"}, it->first.Mark());
+    std::vector<PluginReference> references;
+    for (const Checked& p : plugins.entries)
+      references.push_back({p.word, detail::dotted(p.path), sources.locate(p.path, p.mark)});
+    load_scene_plugins(references, directory);
+    return !references.empty();
+  }
+  return false;
+}
+
+Scene load(std::string_view text, const std::string& source, const std::vector<std::string>& overrides,
+           const std::filesystem::path& directory) {
   Sources sources(source);
   try {
     YAML::Node root = detail::parse_scene_text(text, source);
     for (const std::string& assignment : overrides) sources.apply_override(root, assignment);
-    const schema::Key schema = schema::scene_schema();
+    load_environment_plugins();  // RIGIDITY_PLUGIN_PATH, before the schema lists the registered models
+    schema::Key schema = schema::scene_schema();
     const UnitSystem units = read_units(root, schema, sources);
+    if (load_listed_plugins(root, schema, sources, directory)) schema = schema::scene_schema();  // with their models
     Checker checker(sources, units);
     Checked checked = checker.check(root, schema, {}, root.Mark());
-    Scene scene = SceneBuilder(checker, sources, units).build(checked);
+    Scene scene = SceneBuilder(checker, sources, units, directory).build(checked);
     scene.resolved_yaml = detail::emit_resolved(checked, units);
     return scene;
   } catch (const YAML::Exception& e) {
@@ -331,7 +355,7 @@ Scene load(std::string_view text, const std::string& source, const std::vector<s
 }  // namespace
 
 Scene load_scene_string(std::string_view text, const std::string& source, const std::vector<std::string>& overrides) {
-  return load(text, source, overrides);
+  return load(text, source, overrides, {});  // relative paths from the working directory
 }
 
 Scene load_scene_file(const std::string& path, const std::vector<std::string>& overrides) {
@@ -355,7 +379,7 @@ Scene load_scene_file(const std::string& path, const std::vector<std::string>& o
     if (text.size() > schema::kMaxInputBytes) break;  // grew while we read; parse_scene_text refuses it
   }
   if (in.bad()) throw InputError(SourceLocation{path, 0, 0}, "", "error while reading the file");
-  return load(text, path, overrides);
+  return load(text, path, overrides, std::filesystem::path(path).parent_path());
 }
 
 std::string_view default_scene_text() { return detail::kDefaultSceneText; }
