@@ -303,6 +303,8 @@ class Tracker {
   std::vector<SampleTime> samples_;
   RunResult result_;
   double impulse_ = 0.0, wall_work_ = 0.0, dissipated_ = 0.0;
+  double last_interaction_t_ = -1.0;
+  long interactions_at_this_t_ = 0;
 
   // scratch buffers reused by every interaction
   std::vector<int> group_, emitted_left_, emitted_right_, touched_;
@@ -654,8 +656,7 @@ void Tracker::wave(const Material& m, const State& outer, const State& star, int
     w.states.push_back(star);
     return;
   }
-  const double p_outer = m.pressure(outer.stretch), p_star = m.pressure(star.stretch);
-  if (p_star > p_outer) {
+  if (wave_is_shock(m, outer, star.stretch, family)) {
     w.shock = true;
     w.states.push_back(star);
     return;
@@ -791,6 +792,16 @@ void Tracker::split_piece(int left_node, int right_node, const State& left_state
 }
 
 void Tracker::resolve_group(std::vector<int>& group, double t) {
+  // Interactions that keep recreating themselves at one instant (a fan whose steps would
+  // converge: a material not convex in the sense the Riemann solver assumes) stop the run.
+  if (t != last_interaction_t_) {
+    last_interaction_t_ = t;
+    interactions_at_this_t_ = 0;
+  } else if (++interactions_at_this_t_ > 100 * (static_cast<long>(nodes_.size()) + 100)) {
+    throw NumericalError("the interactions at t = " + number(t) +
+                         " do not advance in time: the waves of a material keep recreating each other there"
+                         " (a material not convex in the sense the Riemann solver assumes?)");
+  }
   if (++result_.stats.interactions > scene_.solver.max_interactions) {
     throw NumericalError("more than solver.max_interactions = " + std::to_string(scene_.solver.max_interactions) +
                          " interactions by t = " + number(t) + " (of t_end = " + number(scene_.t_end) +

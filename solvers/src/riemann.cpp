@@ -81,8 +81,12 @@ Solved<double> shock_star_rapidity(const Material& m, const State& outer, Stretc
   // Increasing away from the outer rapidity on the family's side: g(d) = H(φ_outer + family d).
   // The rarefaction curve's rapidity change |ΔΨ| agrees with the shock's to second order in
   // the strength: bracket the root tightly around it, so that Brent needs few steps.
-  const auto g = [&](double d) { return hugoniot(outer.rapidity + family * d); };
-  const double guess = std::abs(m.riemann_psi(star) - m.riemann_psi(outer.stretch));
+  // The star moves against the family's direction in a compression (a C− shock slows the
+  // left state) and with it in an expansion; the rarefaction curve gives the side.
+  const double psi_change = m.riemann_psi(star) - m.riemann_psi(outer.stretch);
+  const double direction = psi_change > 0.0 ? family : -family;
+  const auto g = [&](double d) { return hugoniot(outer.rapidity + direction * d); };
+  const double guess = std::abs(psi_change);
   const double step = 0.02 * guess + 1e-300;
   double lo = 0.0, hi = guess;
   if (g(guess) > 0.0) {
@@ -96,7 +100,7 @@ Solved<double> shock_star_rapidity(const Material& m, const State& outer, Stretc
   }
   const Solved<double> d = g(lo) == 0.0 ? Solved<double>{lo, Status::ok} : find_root(g, lo, hi);
   if (!d.ok()) return d;
-  return Solved<double>{outer.rapidity + family * d.value, Status::ok};
+  return Solved<double>{outer.rapidity + direction * d.value, Status::ok};
 }
 
 /// The star state on a wave curve given the star stretch (rather than pressure).
@@ -105,8 +109,9 @@ WaveCurvePoint point_at_stretch(const WaveCurve& curve, Stretch star) {
   const State& st = curve.state();
   const double sign = curve.side() == Side::left ? -1.0 : 1.0;
   double jump;  // |rapidity change| with sign: positive when the star is compressed relative to the side
-  if (!m.linearly_degenerate() && star < st.stretch) {
-    const Solved<double> rapidity = shock_star_rapidity(m, st, star, curve.side() == Side::left ? -1 : +1);
+  const int family = curve.side() == Side::left ? -1 : +1;
+  if (wave_is_shock(m, st, star, family)) {
+    const Solved<double> rapidity = shock_star_rapidity(m, st, star, family);
     if (!rapidity.ok()) return WaveCurvePoint{0.0, star, rapidity.status};
     return WaveCurvePoint{rapidity.value, star, Status::ok};
   } else {
@@ -261,43 +266,51 @@ RiemannSolution solve_riemann(const Material& left_material, const State& left, 
 RiemannSolution solve_wall(const Material& m, const State& state, Side side, double wall_rapidity,
                            double min_pressure) {
   const WaveCurve curve(m, state, side);
-  // Compression if the material moves into the wall.
-  const bool compressive = side == Side::left ? state.rapidity > wall_rapidity : state.rapidity < wall_rapidity;
-  RiemannSolution out;
-  if (m.linearly_degenerate() || !compressive) {
-    // Ψ* from the invariant carried across the wave.
-    const double psi_star = side == Side::left ? curve.invariant() - wall_rapidity : wall_rapidity - curve.invariant();
-    const double impact = side == Side::left ? state.rapidity - wall_rapidity : wall_rapidity - state.rapidity;
+  const int family = side == Side::left ? -1 : +1;
+  const double impact = side == Side::left ? state.rapidity - wall_rapidity : wall_rapidity - state.rapidity;
+  // The star on the rarefaction curve: Ψ* from the invariant carried across the wave. It is
+  // the answer for a linearly degenerate material and for a fan.
+  const double psi_star = side == Side::left ? curve.invariant() - wall_rapidity : wall_rapidity - curve.invariant();
+  const Solved<Stretch> on_curve =
+      psi_star < m.psi_max() ? m.stretch_at_psi(psi_star) : Solved<Stretch>::failure(Status::out_of_range);
+  const bool jump_or_fan =
+      m.linearly_degenerate() || (on_curve.ok() && !wave_is_shock(m, state, on_curve.value, family));
+  Stretch star;
+  if (jump_or_fan) {
     if (psi_star >= m.psi_max()) return collapse(psi_star, m.psi_max(), impact);
+    // A wall that cannot pull lets go before the material would reach that tension (the
+    // rigid fluid cannot even be put in tension: its curve ends at p = 0).
     if (min_pressure > -kInf) {
       const Solved<Stretch> parting = m.stretch_at_pressure(min_pressure);
       if (parting.ok() && psi_star < m.riemann_psi(parting.value)) return solve_free_end(m, state, side);
     }
-    const Solved<Stretch> star = m.stretch_at_psi(psi_star);
-    if (!star.ok()) return RiemannSolution{star.status, false, 0.0, {}, {}, psi_star, m.psi_max()};
-    out.pressure = m.pressure(star.value);
-    out.left = out.right = State{wall_rapidity, star.value};
-    return out;
+    if (!on_curve.ok()) return RiemannSolution{Status::not_converged, false, 0.0, {}, {}, psi_star, m.psi_max()};
+    star = on_curve.value;
+  } else {
+    // A shock: solve φ*(z) = φ_wall on the wave curve for the star stretch z = ln s*; the
+    // mismatch g grows with z (the less compressed the star, the more of the side's motion
+    // towards the wall it keeps), so its sign at the side's own stretch says which way to go.
+    const auto g = [&curve, wall_rapidity, side](double z) {
+      const WaveCurvePoint pt = point_at_stretch(curve, Stretch::from_log(z));
+      return side == Side::left ? pt.rapidity - wall_rapidity : wall_rapidity - pt.rapidity;
+    };
+    const double z_side = state.stretch.log();
+    const StretchRange range = m.admissible();
+    const int direction = g(z_side) > 0.0 ? -1 : +1;
+    const Solved<double> far = expand_bracket(g, z_side, direction, range.log_min, range.log_max);
+    if (!far.ok()) {
+      if (direction < 0) return collapse(std::numeric_limits<double>::quiet_NaN(), m.psi_max(), impact);
+      return RiemannSolution{far.status, false, 0.0, {}, {}, 0.0, 0.0};
+    }
+    const Solved<double> root =
+        direction < 0 ? find_root(g, far.value, z_side) : find_root(g, z_side, far.value);
+    if (!root.ok()) return RiemannSolution{root.status, false, 0.0, {}, {}, 0.0, 0.0};
+    star = Stretch::from_log(root.value);
   }
-  // A shock into a genuinely nonlinear material: solve φ*(z) = φ_wall for the star
-  // stretch z = ln s*, with g increasing in z (less compression, the star keeps more
-  // of the side's motion towards the wall).
-  const auto g = [&curve, wall_rapidity, side](double z) {
-    const WaveCurvePoint pt = point_at_stretch(curve, Stretch::from_log(z));
-    return side == Side::left ? pt.rapidity - wall_rapidity : wall_rapidity - pt.rapidity;
-  };
-  const double z_hi = state.stretch.log();
-  const double log_min = m.admissible().log_min;
-  const Solved<double> lo = expand_bracket(g, z_hi, -1, log_min, z_hi);
-  if (!lo.ok()) {
-    const double impact = side == Side::left ? state.rapidity - wall_rapidity : wall_rapidity - state.rapidity;
-    return collapse(std::numeric_limits<double>::quiet_NaN(), m.psi_max(), impact);
-  }
-  const Solved<double> root = find_root(g, lo.value, z_hi);
-  if (!root.ok()) return RiemannSolution{root.status, false, 0.0, {}, {}, 0.0, 0.0};
-  const double z = root.value;
-  const Stretch star = Stretch::from_log(z);
+  RiemannSolution out;
   out.pressure = m.pressure(star);
+  // A wall that cannot pull lets go: the end is free.
+  if (out.pressure < min_pressure) return solve_free_end(m, state, side);
   out.left = out.right = State{wall_rapidity, star};
   return out;
 }
@@ -349,6 +362,17 @@ void require_solved(const RiemannSolution& sol, const Material& m, double t, dou
   }
   if (m.model() == "hooke") os << "; for hooke the limit is the wave speed V = " << std::tanh(sol.limit_psi) << " c";
   throw InadmissibleError(os.str());
+}
+
+bool wave_is_shock(const Material& m, const State& outer, Stretch star, int family) {
+  if (m.linearly_degenerate() || star == outer.stretch) return false;
+  // The star on the rarefaction curve: J+ = φ + Ψ carried across a C− wave, J− = φ − Ψ across a C+.
+  const double psi_change = m.riemann_psi(star) - m.riemann_psi(outer.stretch);
+  const State on_curve{outer.rapidity + family * psi_change, star};
+  const double outer_speed = characteristic_speed(m, outer, family);
+  const double star_speed = characteristic_speed(m, on_curve, family);
+  // A C− fan has the outer state on its left, a C+ fan on its right.
+  return family < 0 ? !(outer_speed < star_speed) : !(star_speed < outer_speed);
 }
 
 FrontSpeeds characteristic_speeds(const Material& m, const State& state, int family) {

@@ -107,7 +107,8 @@ TEST(RandomScenes, KeepEveryPhysicalProperty) {
     RunResult r;
     try {
       r = solve(scene);
-    } catch (const InadmissibleError&) {
+    } catch (const InadmissibleError& e) {
+      if (std::getenv("RIGIDITY_TRACE_RANDOM")) std::fprintf(stderr, "inadmissible %d: %s\n", i, e.what());
       ++inadmissible;  // a hooke collision faster than V: no classical solution
       continue;
     } catch (const NumericalError&) {

@@ -50,10 +50,6 @@ class WaveCurve {
   WaveCurve(const Material& material, const State& state, Side side);
   /// The star state at pressure p. out_of_range beyond the material's limits.
   [[nodiscard]] WaveCurvePoint at_pressure(double p) const;
-  /// True if the wave to star pressure p is a shock (compressive wave of a
-  /// genuinely nonlinear material); false for a rarefaction or a jump of a
-  /// linearly degenerate material.
-  [[nodiscard]] bool is_shock(double p) const { return !material_->linearly_degenerate() && p > pressure_; }
   [[nodiscard]] double pressure() const { return pressure_; }
   [[nodiscard]] const Material& material() const { return *material_; }
   [[nodiscard]] const State& state() const { return state_; }
@@ -104,6 +100,14 @@ struct FrontSpeeds {
 /// Both speeds of the characteristic of family `family` (+1 or -1) in a state:
 /// dX/dt = ± c_s / (s γ (1 ± v c_s)),  dx/dt = (v ± c_s)/(1 ± v c_s).
 [[nodiscard]] FrontSpeeds characteristic_speeds(const Material& material, const State& state, int family);
+/// True if the wave of family `family` from `outer` to the star stretch is a shock (Lax:
+/// the characteristics run into it), false if it is a rarefaction fan or a jump of a
+/// linearly degenerate material. Decided on the rarefaction curve: a fan must spread,
+/// its characteristic speed growing from the left of the fan to its right. For the usual
+/// convexity this makes compressions shocks; for a material whose Lagrangian wave speed
+/// grows under tension it makes expansions shocks and compressions fans.
+[[nodiscard]] bool wave_is_shock(const Material& material, const State& outer, Stretch star, int family);
+
 /// Lagrangian speed dX/dt of a characteristic of family `family` (+1 or -1) in a state.
 [[nodiscard]] double characteristic_speed(const Material& material, const State& state, int family);
 /// Lab-frame speed dx/dt of that characteristic.
