@@ -664,12 +664,10 @@ void Tracker::wave(const Material& m, const State& outer, const State& star, int
   // A rarefaction fan: states along the invariant of the other family, in steps of Ψ.
   const double psi_outer = m.riemann_psi(outer.stretch), psi_star = m.riemann_psi(star.stretch);
   const double span = std::abs(psi_star - psi_outer);
-  int steps = static_cast<int>(std::ceil(span / fan_step_));
-  if (steps > kMaxFanSteps) {
-    steps = kMaxFanSteps;
-    fan_capped_ = true;
-  }
-  steps = std::max(steps, 1);
+  // The step count in double first: span / tolerance overflows an int for tolerances of 1e-11.
+  const double wanted = std::ceil(span / fan_step_);
+  if (wanted > kMaxFanSteps) fan_capped_ = true;
+  const int steps = std::max(1, static_cast<int>(std::min(wanted, static_cast<double>(kMaxFanSteps))));
   // J carried across: J+ = φ + Ψ for a C− fan, J− = φ − Ψ for a C+ fan.
   const double invariant = family < 0 ? outer.rapidity + psi_outer : outer.rapidity - psi_outer;
   for (int k = 1; k < steps; ++k) {

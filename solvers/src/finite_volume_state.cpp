@@ -113,6 +113,16 @@ Recovered recover_state(const Material& m, const Conserved& u, double rapidity_g
   if (target == 0.0 && lo == 0.0) return Recovered{State{0.0, curve.stretch(0.0)}, Status::ok, false};
   if (lo > 0.0 && curve.value(lo) > target) return failed(Status::out_of_range);
 
+  // A tiny momentum (down to subnormal numbers): G(φ) = h(φ) sinh φ with h(φ) = h(0)(1 + O(φ²)),
+  // so φ = asinh(|U₁|/h(0)) is exact to round-off below 1e-8 and needs no iteration.
+  if (lo == 0.0) {
+    const double h0 = curve.enthalpy_per_label(0.0);
+    if (target < 1e-8 * h0) {
+      const double phi = std::asinh(target / h0);
+      return Recovered{State{sign * phi, curve.stretch(phi)}, Status::ok, false};
+    }
+  }
+
   // Newton on G(φ) = |U₁| from the guess, safeguarded: a step that leaves the
   // bracket [lo, hi] bisects it, or, while no point above the root is known, doubles
   // φ outwards (G may underflow far beyond the root, so the cap is a poor first try).
@@ -141,7 +151,8 @@ Recovered recover_state(const Material& m, const Conserved& u, double rapidity_g
     double next = phi - residual / dg;
     if (!(next > lo && next < hi)) next = hi_known ? 0.5 * (lo + hi) : std::min(2.0 * std::max(phi, 0.5), hi);
     const bool converged =
-        std::abs(next - phi) <= 2.0 * kEps * std::abs(next) || (hi_known && hi - lo <= 2.0 * kEps * hi);
+        std::abs(next - phi) <= 2.0 * kEps * std::abs(next) + std::numeric_limits<double>::min() ||
+        (hi_known && hi - lo <= 2.0 * kEps * hi);
     phi = next;
     if (converged) return Recovered{State{sign * phi, curve.stretch(phi)}, Status::ok, false};
   }
