@@ -12,6 +12,7 @@
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/riemann.hpp"
 #include "rigidity/solvers/solve.hpp"
+#include "shock_tube_exact.hpp"
 #include "two_material_exact.hpp"
 
 namespace rigidity {
@@ -99,33 +100,6 @@ TEST(Collision, FlyerPlateSpallsInTheRigidFluidButNotInTheRigidSolid) {
 
 // ---- the shock tube of the constant-sound-speed fluid --------------------------------
 
-struct ShockTube {
-  double V = 0.5, T = 0.3, X0 = 0.5;
-  State left{0.0, Stretch::from_value(0.5)}, right{0.0, Stretch::natural()};
-};
-
-/// The exact stretch at label X and time T, from the star state, the exact shock
-/// speed and the self-similar fan (solved here by bisection along J+).
-double exact_stretch(const Material& m, const ShockTube& tube, double X) {
-  const RiemannSolution sol = solve_riemann(m, tube.left, m, tube.right, -1e300);
-  const double xi = (X - tube.X0) / tube.T;
-  const double head = characteristic_speed(m, tube.left, -1);
-  const double tail = characteristic_speed(m, sol.left, -1);
-  const double shock = shock_speeds(m, tube.right, sol.right, +1).lagrangian;
-  if (xi <= head) return tube.left.stretch.value();
-  if (xi >= shock) return tube.right.stretch.value();
-  if (xi >= tail) return sol.left.stretch.value();
-  const double j_plus = tube.left.rapidity + m.riemann_psi(tube.left.stretch);
-  double lo = m.riemann_psi(sol.left.stretch), hi = m.riemann_psi(tube.left.stretch);
-  for (int i = 0; i < 200; ++i) {
-    const double psi = 0.5 * (lo + hi);
-    const State st{j_plus - psi, m.stretch_at_psi(psi).value};
-    // Along the fan the C− speed increases from head (Ψ_L) to tail (Ψ*).
-    (characteristic_speed(m, st, -1) > xi ? lo : hi) = psi;
-  }
-  return m.stretch_at_psi(0.5 * (lo + hi)).value.value();
-}
-
 double shock_tube_error(double tolerance) {
   char yaml[1024];
   std::snprintf(yaml, sizeof yaml, R"(
@@ -152,10 +126,11 @@ outputs:
   const RunResult r = run_yaml(yaml, &scene);
   const Material& m = *scene.materials.at("gas").material;
   const ShockTube tube;
+  const RiemannSolution sol = solve_riemann(m, tube.left, m, tube.right, -1e300);
   double error = 0.0;
   int n = 0;
   for (const SnapshotSample& s : r.snapshots) {
-    error += std::abs(s.value - exact_stretch(m, tube, s.X));
+    error += std::abs(s.value - shock_tube_exact_stretch(m, sol, tube, s.X));
     ++n;
   }
   EXPECT_EQ(n, 4001);

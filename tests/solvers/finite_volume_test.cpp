@@ -20,6 +20,7 @@
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/riemann.hpp"
 #include "rigidity/solvers/solve.hpp"
+#include "shock_tube_exact.hpp"
 #include "two_material_exact.hpp"
 
 namespace rigidity {
@@ -237,31 +238,6 @@ TEST(FiniteVolumeSmoothWave, FirstOrderSchemeConvergesAtFirstOrder) {
 
 /// configs/shock_tube.yaml: compressed fluid (s = 0.5) left of unstrained fluid, at rest
 /// between walls; a rarefaction fan runs left, a genuine shock right.
-struct ShockTube {
-  double V = 0.5, T = 0.3, X0 = 0.5;
-  State left{0.0, Stretch::from_value(0.5)}, right{0.0, Stretch::natural()};
-};
-
-/// The exact stretch at label X and time T: the star state from solve_riemann, the
-/// shock at its exact speed and the self-similar fan along J+.
-double shock_tube_exact_stretch(const Material& m, const RiemannSolution& sol, const ShockTube& tube, double X) {
-  const double xi = (X - tube.X0) / tube.T;
-  const double head = characteristic_speed(m, tube.left, -1);
-  const double tail = characteristic_speed(m, sol.left, -1);
-  const double shock = shock_speeds(m, tube.right, sol.right, +1).lagrangian;
-  if (xi <= head) return tube.left.stretch.value();
-  if (xi >= shock) return tube.right.stretch.value();
-  if (xi >= tail) return sol.left.stretch.value();
-  const double j_plus = tube.left.rapidity + m.riemann_psi(tube.left.stretch);
-  double lo = m.riemann_psi(sol.left.stretch), hi = m.riemann_psi(tube.left.stretch);
-  for (int i = 0; i < 100; ++i) {
-    const double psi = 0.5 * (lo + hi);
-    const State st{j_plus - psi, m.stretch_at_psi(psi).value};
-    (characteristic_speed(m, st, -1) > xi ? lo : hi) = psi;  // C− speed rises from head (Ψ_L) to tail (Ψ*)
-  }
-  return m.stretch_at_psi(0.5 * (lo + hi)).value.value();
-}
-
 SceneRun shock_tube_run(const std::string& solver) {
   return run_yaml(R"(
 name: shock_tube
