@@ -12,6 +12,7 @@
 
 #include "rigidity/errors.hpp"
 #include "rigidity/solvers/riemann.hpp"
+#include "rigidity/solvers/sampling.hpp"
 
 namespace rigidity {
 
@@ -178,11 +179,6 @@ struct WaveStates {
   bool shock = false;
 };
 
-struct SampleTime {
-  double t;
-  int kind;   ///< 0 probe, 1 snapshot
-  int index;
-};
 
 bool same_state(const State& a, const State& b) {
   return std::abs(a.rapidity - b.rapidity) <= 4.0 * kEps * (1.0 + std::abs(a.rapidity)) &&
@@ -377,19 +373,7 @@ void Tracker::build_walls() {
   }
 }
 
-void Tracker::collect_sample_times() {
-  const double t_end = scene_.t_end;
-  for (std::size_t i = 0; i < scene_.outputs.probes.size(); ++i) {
-    const double every = scene_.outputs.probes[i].every;
-    const long count = static_cast<long>(std::floor(t_end / every * (1.0 + 4.0 * kEps)));
-    for (long k = 0; k <= count; ++k)
-      samples_.push_back(SampleTime{std::min(static_cast<double>(k) * every, t_end), 0, static_cast<int>(i)});
-  }
-  for (std::size_t i = 0; i < scene_.outputs.snapshots.size(); ++i)
-    for (double t : scene_.outputs.snapshots[i].times) samples_.push_back(SampleTime{t, 1, static_cast<int>(i)});
-  std::stable_sort(samples_.begin(), samples_.end(),
-                   [](const SampleTime& a, const SampleTime& b) { return a.t < b.t; });
-}
+void Tracker::collect_sample_times() { samples_ = sample_times(scene_); }
 
 // =====================================================================================
 // events
@@ -1075,19 +1059,7 @@ bool Tracker::locate(int body, double X, double t, Region& region, double& x) co
 }
 
 double Tracker::quantity(Quantity q, const Region& r, double X, double x) const {
-  const Material& m = *r.material;
-  switch (q) {
-    case Quantity::X: return X;
-    case Quantity::x: return x;
-    case Quantity::v: return std::tanh(r.state.rapidity);
-    case Quantity::s: return r.state.stretch.value();
-    case Quantity::p: return m.pressure(r.state.stretch);
-    case Quantity::e:
-    case Quantity::rho: return m.energy_density(r.state.stretch);
-    case Quantity::gamma: return std::cosh(r.state.rapidity);
-    case Quantity::cs: return m.sound_speed(r.state.stretch);
-  }
-  return 0.0;
+  return quantity_value(q, *r.material, r.state, X, x);
 }
 
 void Tracker::sample(const SampleTime& st) {

@@ -13,6 +13,7 @@
 
 #include "rigidity/errors.hpp"
 #include "rigidity/solvers/riemann.hpp"
+#include "rigidity/solvers/sampling.hpp"
 
 namespace rigidity {
 
@@ -88,11 +89,6 @@ struct Body {
   bool cavitated = false;              ///< some cell was clamped at the parting stretch in the last step
 };
 
-struct SampleTime {
-  double t;
-  int kind;  ///< 0 probe, 1 snapshot
-  int index;
-};
 
 /// Slopes of the Riemann invariants J± per unit label.
 struct InvariantSlopes {
@@ -292,19 +288,7 @@ void Scheme::build_walls() {
   }
 }
 
-void Scheme::collect_sample_times() {
-  const double t_end = scene_.t_end;
-  for (std::size_t i = 0; i < scene_.outputs.probes.size(); ++i) {
-    const double every = scene_.outputs.probes[i].every;
-    const long count = static_cast<long>(std::floor(t_end / every * (1.0 + 4.0 * kEps)));
-    for (long k = 0; k <= count; ++k)
-      samples_.push_back(SampleTime{std::min(static_cast<double>(k) * every, t_end), 0, static_cast<int>(i)});
-  }
-  for (std::size_t i = 0; i < scene_.outputs.snapshots.size(); ++i)
-    for (double t : scene_.outputs.snapshots[i].times) samples_.push_back(SampleTime{t, 1, static_cast<int>(i)});
-  std::stable_sort(samples_.begin(), samples_.end(),
-                   [](const SampleTime& a, const SampleTime& b) { return a.t < b.t; });
-}
+void Scheme::collect_sample_times() { samples_ = sample_times(scene_); }
 
 // =====================================================================================
 // one step
@@ -682,20 +666,7 @@ int Scheme::locate(int body, double X, double& x) const {
 }
 
 double Scheme::quantity(Quantity q, int c, double X, double x) const {
-  const Material& m = *material_[c];
-  const State& st = state_[c];
-  switch (q) {
-    case Quantity::X: return X;
-    case Quantity::x: return x;
-    case Quantity::v: return std::tanh(st.rapidity);
-    case Quantity::s: return st.stretch.value();
-    case Quantity::p: return m.pressure(st.stretch);
-    case Quantity::e:
-    case Quantity::rho: return m.energy_density(st.stretch);
-    case Quantity::gamma: return std::cosh(st.rapidity);
-    case Quantity::cs: return m.sound_speed(st.stretch);
-  }
-  return 0.0;
+  return quantity_value(q, *material_[c], state_[c], X, x);
 }
 
 void Scheme::sample(const SampleTime& st) {
