@@ -5,6 +5,7 @@
 // against the material contract on the tables in tests/data/tables/.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -35,8 +36,10 @@ double law_energy(double s) { return (std::pow(s, -kK) + kV2) / kK; }
 class TableFile {
  public:
   explicit TableFile(const std::string& text) {
+    // Unique across the processes ctest runs in parallel, as well as within one.
     static int count = 0;
-    path_ = fs::path(::testing::TempDir()) / ("rigidity_tabulated_" + std::to_string(++count) + ".csv");
+    path_ = fs::path(::testing::TempDir()) /
+            ("rigidity_tabulated_" + std::to_string(::getpid()) + "_" + std::to_string(++count) + ".csv");
     std::ofstream(path_) << text;
   }
   ~TableFile() {
