@@ -9,7 +9,9 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -81,6 +83,37 @@ class CliTest : public ::testing::Test {
 
  private:
   fs::path dir_;
+};
+
+/// True if gnuplot is on PATH.
+inline bool gnuplot_installed() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }
+
+/// A non-empty PNG image.
+inline ::testing::AssertionResult is_png(const fs::path& path) {
+  const std::string bytes = read_text(path);
+  if (bytes.size() > 100 && bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << path << " is not a non-empty PNG (" << bytes.size() << " bytes)";
+}
+
+/// PATH set to `value` while in scope.
+class ScopedPath {
+ public:
+  explicit ScopedPath(const std::string& value) {
+    if (const char* old = std::getenv("PATH")) saved_ = old;
+    ::setenv("PATH", value.c_str(), 1);
+  }
+  ~ScopedPath() {
+    if (saved_) {
+      ::setenv("PATH", saved_->c_str(), 1);
+    } else {
+      ::unsetenv("PATH");
+    }
+  }
+  ScopedPath(const ScopedPath&) = delete;
+  ScopedPath& operator=(const ScopedPath&) = delete;
+
+ private:
+  std::optional<std::string> saved_;
 };
 
 }  // namespace rigidity::testing
