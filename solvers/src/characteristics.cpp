@@ -1066,9 +1066,7 @@ void Tracker::sample(const SampleTime& st) {
   const double t = st.t;
   if (st.kind == 0) {
     const ProbeDecl& probe = scene_.outputs.probes[st.index];
-    int body = 0;
-    for (std::size_t b = 0; b < scene_.bodies.size(); ++b)
-      if (scene_.bodies[b].name == probe.body) body = static_cast<int>(b);
+    const int body = probe_body(scene_, probe);
     Region r;
     double x = 0.0;
     if (!locate(body, probe.X, t, r, x)) return;
@@ -1079,8 +1077,7 @@ void Tracker::sample(const SampleTime& st) {
   const SnapshotDecl& snap = scene_.outputs.snapshots[st.index];
   for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
     const BodyDecl& body = scene_.bodies[b];
-    if (!snap.bodies.empty() && std::find(snap.bodies.begin(), snap.bodies.end(), body.name) == snap.bodies.end())
-      continue;
+    if (!snapshot_includes(snap, body)) continue;
     const double l0 = body.natural_length();
     for (int i = 0; i < snap.samples; ++i) {
       const double X = l0 * i / (snap.samples - 1);

@@ -673,9 +673,7 @@ void Scheme::sample(const SampleTime& st) {
   const double t = st.t;
   if (st.kind == 0) {
     const ProbeDecl& probe = scene_.outputs.probes[st.index];
-    int body = 0;
-    for (std::size_t b = 0; b < scene_.bodies.size(); ++b)
-      if (scene_.bodies[b].name == probe.body) body = static_cast<int>(b);
+    const int body = probe_body(scene_, probe);
     double x = 0.0;
     const int c = locate(body, probe.X, x);
     for (Quantity q : probe.quantities)
@@ -685,8 +683,7 @@ void Scheme::sample(const SampleTime& st) {
   const SnapshotDecl& snap = scene_.outputs.snapshots[st.index];
   for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
     const BodyDecl& decl = scene_.bodies[b];
-    if (!snap.bodies.empty() && std::find(snap.bodies.begin(), snap.bodies.end(), decl.name) == snap.bodies.end())
-      continue;
+    if (!snapshot_includes(snap, decl)) continue;
     const Body& body = bodies_[b];
     const double l0 = body.length;
     // One sweep from the left end, summing (s/γ) ΔX.

@@ -22,6 +22,17 @@ std::vector<SampleTime> sample_times(const Scene& scene) {
   return samples;
 }
 
+int probe_body(const Scene& scene, const ProbeDecl& probe) {
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+    if (scene.bodies[b].name == probe.body) return static_cast<int>(b);
+  return 0;
+}
+
+bool snapshot_includes(const SnapshotDecl& snapshot, const BodyDecl& body) {
+  return snapshot.bodies.empty() ||
+         std::find(snapshot.bodies.begin(), snapshot.bodies.end(), body.name) != snapshot.bodies.end();
+}
+
 double quantity_value(Quantity q, const Material& m, const State& st, double X, double x) {
   switch (q) {
     case Quantity::X: return X;

@@ -22,6 +22,12 @@ struct SampleTime {
 /// (probes before snapshots at equal times, each in scene order).
 [[nodiscard]] std::vector<SampleTime> sample_times(const Scene& scene);
 
+/// Index of the body a probe samples (the loader has checked that it exists).
+[[nodiscard]] int probe_body(const Scene& scene, const ProbeDecl& probe);
+
+/// True if a snapshot samples this body (an empty `bodies` list means every body).
+[[nodiscard]] bool snapshot_includes(const SnapshotDecl& snapshot, const BodyDecl& body);
+
 /// The value of quantity q in a uniform state at label X and lab position x (natural units).
 [[nodiscard]] double quantity_value(Quantity q, const Material& material, const State& state, double X, double x);
 
