@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "../cli/run_cli.hpp"
+#include "../solvers/error_bound.hpp"
 #include "rigidity/registry.hpp"
 #include "rigidity/run_result.hpp"
 #include "rigidity/scene_loader.hpp"
@@ -142,8 +143,11 @@ TEST(Plugins, ASceneUsesTheMaterialsOfThePluginsItLists) {
   ASSERT_EQ(result.events.size(), 1u);
   EXPECT_EQ(result.events[0].kind, "separation");  // the bar leaves the wall
   const Conservation& c = result.conservation;
-  EXPECT_NEAR(c.momentum_final - c.momentum_initial, c.wall_impulse, 1e-6 * c.energy_initial);
-  EXPECT_NEAR(c.energy_final - c.energy_initial, c.wall_work - c.energy_dissipated, 1e-6 * c.energy_initial);
+  // The books close within what the run's certified error bound allows (fan steps).
+  const double books = certified_books_tolerance(scene, result, c.energy_initial);
+  EXPECT_LT(books, 1e-2 * c.energy_initial) << "a bound too loose to check anything";
+  EXPECT_NEAR(c.momentum_final - c.momentum_initial, c.wall_impulse, books);
+  EXPECT_NEAR(c.energy_final - c.energy_initial, c.wall_work - c.energy_dissipated, books);
   EXPECT_GT(c.energy_dissipated, 0.0) << "a genuine shock";
 }
 

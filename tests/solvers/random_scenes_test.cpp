@@ -16,6 +16,7 @@
 #include "rigidity/errors.hpp"
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/solve.hpp"
+#include "error_bound.hpp"
 
 namespace rigidity {
 namespace {
@@ -121,11 +122,14 @@ TEST(RandomScenes, KeepEveryPhysicalProperty) {
                          c.momentum_final, c.wall_impulse, c.wall_work})
       ASSERT_TRUE(std::isfinite(value));
     const double scale = c.energy_initial + std::abs(c.wall_work);
-    // Energy is never created: only walls' work adds it, shocks remove it; rarefaction
-    // fans split at solver.tolerance = 0.05 may err by a small fraction of that.
+    // Energy is never created: only walls' work adds it, shocks remove it; momentum changes
+    // only by the walls' impulse. Both hold to round-off where the run is exact and within
+    // what its certified error bound allows where it is not (fan steps at tolerance 0.05,
+    // weak waves held back, fronts merged).
+    const double books = certified_books_tolerance(scene, r, scale);
     EXPECT_GE(c.energy_dissipated, 0.0);
-    EXPECT_LE(c.energy_final, c.energy_initial + c.wall_work + 1e-3 * scale);
-    EXPECT_NEAR(c.momentum_final - c.momentum_initial, c.wall_impulse, 1e-3 * scale);
+    EXPECT_LE(c.energy_final, c.energy_initial + c.wall_work + books);
+    EXPECT_NEAR(c.momentum_final - c.momentum_initial, c.wall_impulse, books);
     for (const FrontSegment& f : r.fronts) {
       ASSERT_TRUE(std::isfinite(f.x0) && std::isfinite(f.x1) && std::isfinite(f.t1));
       ASSERT_GT(f.t1, f.t0);
