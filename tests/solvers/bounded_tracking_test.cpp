@@ -1,0 +1,205 @@
+// Front tracking whose cost the tolerance bounds: the certified error bound against a run
+// without thresholds (linearly degenerate bodies, where that run is exact) and against a
+// run at a hundred times smaller tolerance (a genuinely nonlinear body); lab positions
+// consistent with labels at any tolerance; fronts bounded and work linear over long runs.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "error_bound.hpp"
+#include "rigidity/scene_loader.hpp"
+#include "rigidity/solvers/solve.hpp"
+
+namespace rigidity {
+namespace {
+
+struct SceneRun {
+  Scene scene;
+  RunResult result;
+};
+
+SceneRun run(const std::string& yaml, double tolerance, double t_end) {
+  std::ostringstream text;
+  text.precision(17);
+  text << yaml << "solver: {method: characteristics, tolerance: " << tolerance << "}\ntime: {end: " << t_end << "}\n";
+  SceneRun r{load_scene_string(text.str(), "<test>"), {}};
+  r.result = solve(r.scene);
+  return r;
+}
+
+/// The states a snapshot sampled, per (body, X): rapidity and Ψ of the body's material.
+std::map<std::pair<int, double>, std::pair<double, double>> sampled_states(const SceneRun& r) {
+  std::map<std::pair<int, double>, double> v, s;
+  for (const SnapshotSample& sample : r.result.snapshots) {
+    if (sample.quantity == Quantity::v) v[{sample.body, sample.X}] = sample.value;
+    if (sample.quantity == Quantity::s) s[{sample.body, sample.X}] = sample.value;
+  }
+  std::map<std::pair<int, double>, std::pair<double, double>> out;
+  for (const auto& [key, velocity] : v) {
+    const Material& m = r.scene.material_of(r.scene.bodies[key.first].segments.front());
+    out[key] = {std::atanh(velocity), m.riemann_psi(Stretch::from_value(s.at(key)))};
+  }
+  return out;
+}
+
+/// The distance of two runs at the snapshot time in the norm of the error bound: the mean
+/// over the bodies' natural length of |δφ| + |δΨ| (midpoint rule on the uniform samples).
+double distance(const SceneRun& a, const SceneRun& b) {
+  const auto sa = sampled_states(a), sb = sampled_states(b);
+  double integral = 0.0, length = 0.0;
+  for (std::size_t body = 0; body < a.scene.bodies.size(); ++body) {
+    const double l0 = a.scene.bodies[body].natural_length();
+    length += l0;
+    std::vector<double> errors;
+    for (const auto& [key, state] : sa) {
+      if (key.first != static_cast<int>(body)) continue;
+      const auto& other = sb.at(key);
+      errors.push_back(std::abs(state.first - other.first) + std::abs(state.second - other.second));
+    }
+    if (errors.size() < 2) continue;
+    const double dX = l0 / static_cast<double>(errors.size() - 1);
+    for (std::size_t k = 0; k < errors.size(); ++k)
+      integral += errors[k] * dX * (k == 0 || k + 1 == errors.size() ? 0.5 : 1.0);
+  }
+  return integral / length;
+}
+
+// Three linearly degenerate bars of different impedances pushed by a piston into a wall:
+// every wave splits at both contacts, so the fronts of an exact run multiply.
+const std::string kThreeBars = R"(
+name: three_bars
+materials:
+  light: {model: rigid, rest_density: 0.5}
+  heavy: {model: rigid, rest_density: 2.5}
+  soft: {model: hooke, wave_speed: 0.7, rest_density: 1.3}
+bodies:
+  - {name: a, material: light, position: 0.0, length: 0.8, velocity: 0.0}
+  - {name: b, material: heavy, position: 0.8, length: 0.6, velocity: 0.0}
+  - {name: c, material: soft, position: 1.4, length: 1.0, velocity: 0.0}
+boundaries:
+  left: {type: piston, velocity: 0.2}
+  right: {type: wall, bonded: true}
+)";
+
+TEST(ErrorBound, HoldsAgainstAnExactRunOfLinearlyDegenerateBodies) {
+  const std::string yaml = kThreeBars + "outputs: {snapshots: [{times: [6.0], quantities: [v, s], samples: 4001}]}\n";
+  const SceneRun exact = run(yaml, 1e-14, 6.0);
+  ASSERT_EQ(solver_number(exact.result, "waves_held_back"), 0.0) << "the reference must hold nothing back";
+  ASSERT_LT(solver_number(exact.result, "error_bound"), 1e-12);
+  for (double tolerance : {1e-2, 1e-3}) {
+    const SceneRun coarse = run(yaml, tolerance, 6.0);
+    const double bound = solver_number(coarse.result, "error_bound");
+    const double error = distance(coarse, exact);
+    SCOPED_TRACE("tolerance " + std::to_string(tolerance));
+    EXPECT_GT(error, 0.0) << "the coarse run approximated nothing: the test checks nothing";
+    EXPECT_LE(error, bound);
+    EXPECT_LT(coarse.result.stats.interactions, exact.result.stats.interactions);
+  }
+}
+
+// The issue's bar of constant sound speed bouncing off a wall: the release fan from the free
+// end meets the shock and both ring through the bar.
+const std::string kBouncingGas = R"(
+name: bouncing_gas
+materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}
+bodies: [{name: bar, material: gas, position: 0, length: 1, velocity: 0.4}]
+boundaries: {left: {type: free}, right: {type: wall}}
+outputs: {snapshots: [{times: [3.0], quantities: [v, s], samples: 4001}]}
+)";
+
+TEST(ErrorBound, HoldsAgainstARunAtAHundredTimesSmallerTolerance) {
+  const SceneRun fine = run(kBouncingGas, 3e-4, 3.0);
+  for (double tolerance : {3e-2}) {
+    const SceneRun coarse = run(kBouncingGas, tolerance, 3.0);
+    const double bound = solver_number(coarse.result, "error_bound");
+    const double fine_bound = solver_number(fine.result, "error_bound");
+    SCOPED_TRACE("tolerance " + std::to_string(tolerance));
+    // The fine run is itself within its own bound of the truth.
+    EXPECT_LE(distance(coarse, fine), bound + fine_bound);
+    EXPECT_GT(distance(coarse, fine), 0.1 * bound) << "a bound far above the error says little";
+  }
+}
+
+TEST(ErrorBound, FallsWithTheTolerance) {
+  double previous = 1.0;
+  for (double tolerance : {1e-1, 1e-2, 1e-3}) {
+    const double bound = solver_number(run(kBouncingGas, tolerance, 3.0).result, "error_bound");
+    EXPECT_LT(bound, 0.3 * previous) << "tolerance " << tolerance;
+    EXPECT_LT(bound, tolerance) << "the bound misses its target";
+    previous = bound;
+  }
+}
+
+TEST(Geometry, LabPositionsIncreaseWithLabelAtEveryTolerance) {
+  // The shock tube of configs/shock_tube.yaml at a coarse tolerance: every front's lab and
+  // label positions stay consistent, so x grows with X by s/γ dX across every front.
+  const std::string tube = R"(
+name: tube
+materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}
+bodies:
+  - name: tube
+    material: gas
+    position: 0.0
+    segments: [{length: 0.5, velocity: 0.0, stretch: 0.5}, {length: 0.5, velocity: 0.0, stretch: 1.0}]
+boundaries: {left: {type: wall}, right: {type: wall}}
+outputs: {snapshots: [{times: [0.3, 2.0], quantities: [x, s, v], samples: 20001}]}
+)";
+  for (double tolerance : {1e-1, 1e-2, 1e-4}) {
+    const SceneRun r = run(tube, tolerance, 2.0);
+    std::map<std::pair<double, double>, double> x, s, v;
+    for (const SnapshotSample& sample : r.result.snapshots) {
+      auto& target = sample.quantity == Quantity::x ? x : sample.quantity == Quantity::s ? s : v;
+      target[{sample.t, sample.X}] = sample.value;
+    }
+    ASSERT_EQ(x.size(), 2u * 20001u);
+    for (auto it = x.begin(), next = std::next(x.begin()); next != x.end(); ++it, ++next) {
+      if (it->first.first != next->first.first) continue;
+      const double dX = next->first.second - it->first.second;
+      // Lab length of the step: between the label densities of its two ends.
+      const auto density = [&](const std::pair<double, double>& key) {
+        return s.at(key) * std::sqrt(1.0 - v.at(key) * v.at(key));
+      };
+      const double lo = std::min(density(it->first), density(next->first));
+      const double hi = std::max(density(it->first), density(next->first));
+      const double dx = next->second - it->second;
+      ASSERT_GT(dx, 0.0) << "x goes backwards at t = " << it->first.first << ", X = " << it->first.second;
+      // Between samples with one front at most between them (fronts wider apart than the
+      // samples at these tolerances), the lab length lies between the two label densities.
+      if (tolerance < 1e-3) continue;
+      EXPECT_GE(dx, lo * dX * (1.0 - 1e-9)) << "a gap or an overlap at X = " << it->first.second;
+      EXPECT_LE(dx, hi * dX * (1.0 + 1e-9)) << "a gap or an overlap at X = " << it->first.second;
+    }
+  }
+}
+
+TEST(Cost, FrontsStayBoundedAndWorkGrowsLinearlyOverLongRuns) {
+  // The three bars after a short push of the piston, over 15 and 30 time units at tolerance
+  // 1e-2: an exact run multiplies its fronts at every contact (thousands by t = 20); here
+  // the live fronts stay under the cap the tolerance sets (100 per body, at least) and
+  // doubling the run at most doubles (and a little) the interactions. Counts, not seconds.
+  std::string yaml = kThreeBars;
+  yaml.replace(yaml.find("{type: piston, velocity: 0.2}"), 29, "{type: piston, table: [[0.0, 0.2], [0.5, 0.0]]}");
+  const SceneRun first = run(yaml, 1e-2, 15.0);
+  const SceneRun second = run(yaml, 1e-2, 30.0);
+  const SceneRun third = run(yaml, 1e-2, 45.0);
+  const double peak = solver_number(third.result, "fronts_alive_max");
+  EXPECT_LE(peak, 3.0 * 100.0 + 4.0);  // the cap, and the fronts one interaction may add
+  EXPECT_GT(solver_number(third.result, "fronts_merged"), 0.0);
+  // Once the fronts have filled the cap, the work per unit time stays the same.
+  const double work_second = static_cast<double>(second.result.stats.interactions - first.result.stats.interactions);
+  const double work_third = static_cast<double>(third.result.stats.interactions - second.result.stats.interactions);
+  EXPECT_LT(work_third, 1.2 * work_second);
+  const SceneRun& shorter = first;
+  const SceneRun& longer = third;
+  // What the merges cost is reported, and it is what makes the bound grow.
+  EXPECT_GT(solver_number(longer.result, "error_bound"), solver_number(shorter.result, "error_bound"));
+}
+
+}  // namespace
+}  // namespace rigidity
