@@ -111,84 +111,66 @@ struct EventLater {
   bool operator()(const Event& x, const Event& y) const { return x.t != y.t ? x.t > y.t : x.seq > y.seq; }
 };
 
-/// The next meeting of each node with its right neighbour: a binary min-heap with
-/// one entry per node at most, which knows where each node's entry sits so that a
-/// meeting can be moved or cancelled when a neighbour changes. Front tracking of a
-/// many-segment bar spends most of its time here, so no stale entries are kept.
+/// The next meeting of each node with its right neighbour: a binary min-heap invalidated
+/// lazily, as event-driven codes do. Each node has a stamp; scheduling or cancelling its
+/// meeting bumps the stamp, and an entry whose stamp no longer matches is dropped when it
+/// reaches the top. Nothing is erased from the middle of the heap; when stale entries
+/// outnumber the live ones the heap is rebuilt from the live ones, so its size stays within
+/// a few times the number of live fronts.
 class MeetingQueue {
  public:
   struct Entry {
     double t;
     std::uint64_t seq;
     int node;
+    std::uint32_t stamp;
   };
 
+  /// Drops stale entries from the top; call before empty() and top().
+  void prune() {
+    while (!heap_.empty() && !current(heap_.front())) pop_heap();
+  }
   [[nodiscard]] bool empty() const { return heap_.empty(); }
   [[nodiscard]] const Entry& top() const { return heap_.front(); }
 
   void set(int node, double t, std::uint64_t seq) {
-    if (node >= static_cast<int>(position_.size())) position_.resize(static_cast<std::size_t>(node) + 1, kNone);
-    int i = position_[node];
-    if (i == kNone) {
-      i = static_cast<int>(heap_.size());
-      heap_.push_back(Entry{t, seq, node});
-      position_[node] = i;
-      up(i);
-      return;
-    }
-    const bool earlier = before(Entry{t, seq, node}, heap_[i]);
-    heap_[i] = Entry{t, seq, node};
-    earlier ? up(i) : down(i);
+    grow(node);
+    if (!scheduled_[node]) ++live_;
+    scheduled_[node] = true;
+    heap_.push_back(Entry{t, seq, node, ++stamp_[node]});
+    std::push_heap(heap_.begin(), heap_.end(), later);
+    if (heap_.size() > 4 * static_cast<std::size_t>(live_) + 1024) compact();
   }
 
   void erase(int node) {
-    if (node >= static_cast<int>(position_.size()) || position_[node] == kNone) return;
-    const int i = position_[node];
-    const int last = static_cast<int>(heap_.size()) - 1;
-    position_[node] = kNone;
-    if (i != last) {
-      heap_[i] = heap_[last];
-      position_[heap_[i].node] = i;
-      heap_.pop_back();
-      up(i);
-      down(i);
-    } else {
-      heap_.pop_back();
-    }
+    if (node >= static_cast<int>(stamp_.size()) || !scheduled_[node]) return;
+    scheduled_[node] = false;
+    --live_;
+    ++stamp_[node];
   }
 
  private:
-  static bool before(const Entry& a, const Entry& b) { return a.t != b.t ? a.t < b.t : a.seq < b.seq; }
-  void place(int i, const Entry& e) {
-    heap_[i] = e;
-    position_[e.node] = i;
+  static bool later(const Entry& a, const Entry& b) { return a.t != b.t ? a.t > b.t : a.seq > b.seq; }
+  [[nodiscard]] bool current(const Entry& e) const { return scheduled_[e.node] && stamp_[e.node] == e.stamp; }
+  void grow(int node) {
+    if (node < static_cast<int>(stamp_.size())) return;
+    stamp_.resize(static_cast<std::size_t>(node) + 1, 0);
+    scheduled_.resize(static_cast<std::size_t>(node) + 1, false);
   }
-  void up(int i) {
-    const Entry e = heap_[i];
-    while (i > 0) {
-      const int parent = (i - 1) / 2;
-      if (!before(e, heap_[parent])) break;
-      place(i, heap_[parent]);
-      i = parent;
-    }
-    place(i, e);
+  void pop_heap() {
+    std::pop_heap(heap_.begin(), heap_.end(), later);
+    heap_.pop_back();
   }
-  void down(int i) {
-    const Entry e = heap_[i];
-    const int n = static_cast<int>(heap_.size());
-    for (;;) {
-      int child = 2 * i + 1;
-      if (child >= n) break;
-      if (child + 1 < n && before(heap_[child + 1], heap_[child])) ++child;
-      if (!before(heap_[child], e)) break;
-      place(i, heap_[child]);
-      i = child;
-    }
-    place(i, e);
+  void compact() {
+    heap_.erase(std::remove_if(heap_.begin(), heap_.end(), [this](const Entry& e) { return !current(e); }),
+                heap_.end());
+    std::make_heap(heap_.begin(), heap_.end(), later);
   }
 
   std::vector<Entry> heap_;
-  std::vector<int> position_;
+  std::vector<std::uint32_t> stamp_;
+  std::vector<bool> scheduled_;
+  long live_ = 0;
 };
 
 /// One wave of a Riemann solution, as the states it passes through.
@@ -1774,6 +1756,7 @@ RunResult Tracker::run() {
   std::size_t next_sample = 0;
   for (;;) {
     while (!queue_.empty() && !valid(queue_.top())) queue_.pop();
+    meetings_.prune();
     // The earliest of the next rare event and the next meeting (ties in the order scheduled).
     const bool rare_first =
         !queue_.empty() && (meetings_.empty() || queue_.top().t < meetings_.top().t ||
