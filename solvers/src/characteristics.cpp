@@ -26,7 +26,7 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr int kMaxFanSteps = 100000;
 /// A merge of two neighbouring fronts may cost at most this fraction of the tolerance's L1
 /// budget (tolerance × natural length of all bodies): thousands of merges fit in it.
-constexpr double kMergeFraction = 1e-3;
+constexpr double kMergeFraction = 1.0;
 /// Live fronts per body beyond which merges may cost more (see Tracker::steer_merges):
 /// kFrontsPerBody / tolerance, at least kMinFrontsPerBody.
 constexpr double kFrontsPerBody = 0.5;
@@ -397,6 +397,7 @@ class Tracker {
   bool fan_capped_ = false;
   // ---- the error budget (see README "What the tolerance means") --------------------
   double weak_ = 0.0;               ///< strength |ΔJ| below which an interface or contact emits no wave
+  double weak_merging_ = 0.0;       ///< strength below which two fronts of one family merging emit no reflection
   double total_length_ = 1.0;       ///< natural length of all bodies: the error bound is per unit of it
   double error_defects_ = 0.0;      ///< L1 error of waves held back at interfaces and contacts
   double error_fans_ = 0.0;         ///< L1 error of fan steps whose fans are gone
@@ -731,7 +732,7 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     if (!exact_star.ok()) return false;
     star = exact_star.value;
     held_strength = std::abs(wave_strength(*m, left, star, -1));
-    if (held_strength < weak_ && na.family == nb.family) {
+    if (held_strength < weak_merging_ && na.family == nb.family) {
       held_back = true;
       star = left;
     }
@@ -1721,7 +1722,12 @@ RunResult Tracker::run() {
       places += b.segments[k].material != b.segments[k - 1].material ? 1 : 0;
   }
   places += static_cast<int>(scene_.bodies.size()) - 1;
-  merge_base_ = merge_ = kMergeFraction * scene_.solver.tolerance * total_length_;
+  // Merges and the reflections of merging fronts come more often the finer the tolerance
+  // (as fan steps, their number grows as 1/tolerance): what each may cost falls as its square,
+  // so that their sum falls with the tolerance.
+  const double tolerance = scene_.solver.tolerance;
+  merge_base_ = merge_ = kMergeFraction * tolerance * tolerance * total_length_;
+  weak_merging_ = 0.5 * tolerance * tolerance;
   front_cap_ = static_cast<double>(scene_.bodies.size()) *
                std::max(kMinFrontsPerBody, kFrontsPerBody / scene_.solver.tolerance);
   weak_ = 0.5 * scene_.solver.tolerance / std::max(1, places);
