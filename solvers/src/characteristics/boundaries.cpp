@@ -1,0 +1,202 @@
+// Walls, pistons, gaps between bodies, contacts and cracks: the rare events and the ends of pieces.
+#include "tracker.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "rigidity/errors.hpp"
+
+namespace rigidity::characteristics {
+
+bool Tracker::valid(const Event& e) const {
+  switch (e.type) {
+    case EventType::resolve: return nodes_[e.a].alive && nodes_[e.a].version == e.va;
+    case EventType::gap:
+      return nodes_[e.a].alive && nodes_[e.b].alive && nodes_[e.a].version == e.va &&
+             nodes_[e.b].version == e.vb && nodes_[e.a].attach == Attach::free &&
+             nodes_[e.b].attach == Attach::free;
+    case EventType::wall_gap:
+      return nodes_[e.a].alive && nodes_[e.a].version == e.va && walls_[e.b].version == e.vb &&
+             nodes_[e.a].attach == Attach::free;
+    case EventType::piston: return walls_[e.a].version == e.va;
+  }
+  return false;
+}
+
+void Tracker::schedule_gap(int left_piece, int right_piece) {
+  const int a = pieces_[left_piece].right_end, b = pieces_[right_piece].left_end;
+  const Node& na = nodes_[a];
+  const Node& nb = nodes_[b];
+  if (na.attach != Attach::free || nb.attach != Attach::free) return;
+  const double closing = na.dxdt - nb.dxdt;
+  if (!(closing > 0.0)) return;
+  const double t_ref = std::max(na.t0, nb.t0);
+  const double t = t_ref + std::max(0.0, nb.x_at(t_ref) - na.x_at(t_ref)) / closing;
+  if (t <= scene_.t_end) push(t, EventType::gap, a, b, na.version, nb.version);
+}
+
+void Tracker::schedule_wall_gap(int side) {
+  const Wall& w = walls_[side];
+  if (!w.present || order_.empty() || w.attached != kNone) return;
+  const int end = side == 0 ? pieces_[order_.front()].left_end : pieces_[order_.back()].right_end;
+  const Node& n = nodes_[end];
+  if (n.attach != Attach::free) return;
+  // Closing speed of the end towards the wall.
+  const double closing = side == 0 ? w.velocity() - n.dxdt : n.dxdt - w.velocity();
+  if (!(closing > 0.0)) return;
+  const double t_ref = std::max(n.t0, w.t0);
+  const double distance = side == 0 ? n.x_at(t_ref) - w.x_at(t_ref) : w.x_at(t_ref) - n.x_at(t_ref);
+  const double t = t_ref + std::max(0.0, distance) / closing;
+  if (t <= scene_.t_end && t <= w.next_change()) push(t, EventType::wall_gap, end, side, n.version, w.version);
+}
+
+void Tracker::schedule_piston(int side) {
+  const Wall& w = walls_[side];
+  const double t = w.next_change();
+  if (w.present && t <= scene_.t_end) push(t, EventType::piston, side, 0, w.version, 0);
+}
+
+void Tracker::schedule_gaps_around(int piece) {
+  const auto it = std::find(order_.begin(), order_.end(), piece);
+  if (it == order_.end()) return;
+  const std::size_t i = static_cast<std::size_t>(it - order_.begin());
+  if (i > 0) schedule_gap(order_[i - 1], piece);
+  if (i + 1 < order_.size()) schedule_gap(piece, order_[i + 1]);
+  if (i == 0) schedule_wall_gap(0);
+  if (i + 1 == order_.size()) schedule_wall_gap(1);
+}
+
+void Tracker::handle(const Event& e) {
+  const double t = e.t;
+  switch (e.type) {
+    case EventType::resolve: resolve(e.a, e.a, t); break;
+    case EventType::gap: {
+      const double x = 0.5 * (nodes_[e.a].x_at(t) + nodes_[e.b].x_at(t));
+      if (rejoin(e.a, e.b, t, x)) break;
+      set_attach(e.a, Attach::body, e.b, t);
+      set_attach(e.b, Attach::body, e.a, t);
+      event(t, "contact", x, {piece_body_name(nodes_[e.a].piece), piece_body_name(nodes_[e.b].piece)});
+      resolve(e.a, e.b, t);
+      break;
+    }
+    case EventType::wall_gap: {
+      Wall& w = walls_[e.b];
+      w.attached = e.a;
+      w.pressure_since = t;
+      set_attach(e.a, Attach::boundary, e.b, t);
+      event(t, "contact", w.x_at(t), {piece_body_name(nodes_[e.a].piece)});
+      resolve(e.a, e.a, t);
+      break;
+    }
+    case EventType::piston: {
+      Wall& w = walls_[e.a];
+      flush_wall(e.a, t);
+      w.x0 = w.x_at(t);
+      w.t0 = t;
+      ++w.segment;
+      w.rapidity = w.motion.rapidities[w.segment];
+      ++w.version;
+      schedule_piston(e.a);
+      if (w.attached != kNone) {
+        resolve(w.attached, w.attached, t);
+      } else {
+        schedule_wall_gap(e.a);
+      }
+      break;
+    }
+  }
+}
+
+/// Two pieces of one body that parted at a crack meet again at it: the void closes
+/// and they are one piece again, with a jump at the old crack resolved at once.
+/// Returns false if the ends do not belong together (different bodies, or not the
+/// two faces of one crack).
+bool Tracker::rejoin(int right_end, int left_end, double t, double x) {
+  const int a = nodes_[right_end].piece, b = nodes_[left_end].piece;
+  if (pieces_[a].body != pieces_[b].body) return false;
+  const double X = nodes_[right_end].X_at(t);
+  if (std::abs(nodes_[left_end].X_at(t) - X) > 8.0 * kEps * (1.0 + std::abs(X))) return false;
+
+  const int junction = new_node(NodeKind::front, a);
+  Node& j = nodes_[junction];
+  j.front_kind = FrontKind::contact;
+  j.t0 = t;
+  j.X0 = X;
+  j.x0 = x;
+  j.right = nodes_[left_end].right;
+  ++live_fronts_;
+  const int before = nodes_[right_end].prev, after = nodes_[left_end].next;
+  kill_node(right_end, t);
+  kill_node(left_end, t);
+  link(before, junction);
+  link(junction, after);
+  for (int n = junction; n != kNone; n = nodes_[n].next) nodes_[n].piece = a;
+  pieces_[a].right_end = pieces_[b].right_end;
+  pieces_[b].left_end = pieces_[b].right_end = kNone;  // gone
+  order_.erase(std::find(order_.begin(), order_.end(), b));
+  event(t, "rejoin", x, {piece_body_name(a)});
+  resolve(junction, junction, t);
+  schedule_gaps_around(a);
+  return true;
+}
+
+void Tracker::set_attach(int end, Attach attach, int partner, double t) {
+  reanchor(end, t);
+  nodes_[end].attach = attach;
+  nodes_[end].partner = partner;
+}
+
+void Tracker::flush_wall(int side, double t) {
+  Wall& w = walls_[side];
+  if (w.attached == kNone) return;
+  const Node& end = nodes_[w.attached];
+  const Region& r = end.kind == NodeKind::left_end ? end.right : nodes_[end.prev].right;
+  const double p = r.material->pressure(r.state.stretch);
+  const double dt = t - w.pressure_since;
+  // The wall pushes the body with force p towards the body: +p at the left wall, −p at the right.
+  const double force = side == 0 ? p : -p;
+  impulse_ += force * dt;
+  wall_work_ += force * w.velocity() * dt;
+  w.pressure_since = t;
+}
+
+void Tracker::split_piece(int left_node, int right_node, const State& left_state, const State& right_state,
+                          const Region& left_region, const Region& right_region, double t, double X, double x) {
+  // The piece parts between left_node and right_node (either may be an end of the
+  // piece already): a new right end closes the left part, a new left end opens the right.
+  const int old_piece = nodes_[left_node].piece;
+  const int new_piece = static_cast<int>(pieces_.size());
+  pieces_.push_back(Piece{pieces_[old_piece].body, kNone, kNone});
+  const int old_right_end = pieces_[old_piece].right_end;
+
+  const int r_end = new_node(NodeKind::right_end, old_piece);
+  const int l_end = new_node(NodeKind::left_end, new_piece);
+  for (int id : {r_end, l_end}) {
+    nodes_[id].front_kind = FrontKind::boundary;
+    nodes_[id].t0 = t;
+    nodes_[id].X0 = X;
+    nodes_[id].x0 = x;
+  }
+  nodes_[r_end].dxdt = std::tanh(left_state.rapidity);
+  nodes_[l_end].dxdt = std::tanh(right_state.rapidity);
+  (void)left_region;
+  nodes_[l_end].right = right_region;
+  link(left_node, r_end);
+  link(l_end, right_node);
+  nodes_[l_end].prev = kNone;
+  nodes_[r_end].next = kNone;
+  pieces_[old_piece].right_end = r_end;
+  pieces_[new_piece].left_end = l_end;
+  pieces_[new_piece].right_end = old_right_end;
+  for (int n = l_end; n != kNone; n = nodes_[n].next) nodes_[n].piece = new_piece;
+  const auto it = std::find(order_.begin(), order_.end(), old_piece);
+  order_.insert(it + 1, new_piece);
+  // A wall attached to the old right end now holds the new piece.
+  if (nodes_[old_right_end].attach == Attach::boundary) walls_[nodes_[old_right_end].partner].attached = old_right_end;
+}
+
+}  // namespace rigidity::characteristics

@@ -1,0 +1,300 @@
+// What keeps the number of fronts bounded, and what it costs: merging fronts of one family, and the error of fan steps.
+#include "tracker.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "rigidity/errors.hpp"
+
+namespace rigidity::characteristics {
+
+/// Two neighbouring fronts of one family in one material whose weaker one is within
+/// `merge_` (strength times distance, the L1 error of moving it) of the other are one front:
+/// the weaker one moves onto the stronger, which then joins the outer states. For a
+/// linearly degenerate material that front is exact (the other invariant is the same on
+/// all three states); a shock of a genuinely nonlinear one must stay near its Hugoniot and
+/// a fan step within two fan steps. Keeps the fronts of long multi-body runs from growing
+/// without bound; returns the surviving front.
+/// The L1 error of replacing neighbouring fronts p < q of one family by one front, and where
+/// it goes: at the label X̄ that keeps the lab length of the pair, so that lab positions stay
+/// continuous, X̄ = Xp + (Xq − Xp)(ℓM − ℓR)/(ℓL − ℓR) with ℓ = s/γ. For two steps of one sign
+/// X̄ lies between them; for a bump (steps of opposite signs) outside, which is allowed as far
+/// as the next node on that side. The cost is the L1 difference of the two profiles, with
+/// a = J(M) − J(L) and b = J(R) − J(M) the steps in the family's own invariant.
+double Tracker::merge_cost(int p, int q, double t, double* X_merged) const {
+  const Node& np = nodes_[p];
+  const Node& nq = nodes_[q];
+  const Region& L = nodes_[np.prev].right;
+  const State& M = np.right.state;
+  const State& R = nq.right.state;
+  const double lL = label_density(L.state), lM = label_density(M), lR = label_density(R);
+  if (lL == lR) return kInf;
+  const double Xp = np.X_at(t), Xq = nq.X_at(t), d = Xq - Xp;
+  const double X = Xp + d * (lM - lR) / (lL - lR);
+  const double lower = nodes_[np.prev].X_at(t), upper = nodes_[nq.next].X_at(t);
+  const double margin = 64.0 * kEps * (1.0 + std::abs(X));
+  if (!(X > lower + margin && X < upper - margin)) return kInf;
+  if (X_merged != nullptr) *X_merged = X;
+  const Material& m = *L.material;
+  const double a = wave_strength(m, L.state, M, np.family), b = wave_strength(m, M, R, np.family);
+  if (X < Xp) return std::abs(a + b) * (Xp - X) + std::abs(b) * d;
+  if (X > Xq) return std::abs(a) * d + std::abs(a + b) * (X - Xq);
+  return std::abs(a) * (X - Xp) + std::abs(b) * (Xq - X);
+}
+
+int Tracker::merge_neighbours(int id, double t) {
+  for (;;) {
+    if (id == kNone || !nodes_[id].alive || nodes_[id].kind != NodeKind::front) return id;
+    int best_left = kNone;
+    double best_cost = merge_;
+    for (int side = 0; side < 2; ++side) {
+      const int p = side == 0 ? nodes_[id].prev : id;
+      const int q = side == 0 ? id : nodes_[id].next;
+      if (p == kNone || q == kNone) continue;
+      const Node& np = nodes_[p];
+      const Node& nq = nodes_[q];
+      if (np.kind != NodeKind::front || nq.kind != NodeKind::front || np.family != nq.family) continue;
+      const Region& L = nodes_[np.prev].right;
+      if (L.material != np.right.material || L.material != nq.right.material) continue;
+      const double cost = merge_cost(p, q, t, nullptr);
+      if (cost <= best_cost) {
+        best_cost = cost;
+        best_left = p;
+      }
+    }
+    if (best_left == kNone) return id;
+    double X = 0.0;
+    const int p = best_left, q = nodes_[p].next;
+    const int family = nodes_[p].family;
+    const Region L = nodes_[nodes_[p].prev].right;
+    const Region R = nodes_[q].right;
+    const Material& m = *L.material;
+    const State& outer = family < 0 ? L.state : R.state;
+    const State& inner = family < 0 ? R.state : L.state;
+    FrontKind kind = FrontKind::contact;
+    double off = 0.0;
+    if (!m.linearly_degenerate()) {
+      if (same_state(outer, inner)) return id;
+      if (wave_is_shock(m, outer, inner.stretch, family)) {
+        kind = FrontKind::shock;
+        const Solved<double> exact = hugoniot_rapidity(m, outer, inner.stretch, family);
+        if (!exact.ok()) return id;
+        off = std::abs(exact.value - inner.rapidity);
+        if (!(off < weak_)) return id;
+      } else {
+        kind = FrontKind::rarefaction;
+        if (std::abs(m.riemann_psi(outer.stretch) - m.riemann_psi(inner.stretch)) >= 2.0 * fan_step_) return id;
+      }
+      if (!(std::abs(label_jump_speeds(m, L.state, R.state, family).lab) < 1.0)) return id;  // no faster than light
+    }
+    merge_cost(p, q, t, &X);
+    const double x = nodes_[p].x_at(t) + (X - nodes_[p].X_at(t)) * label_density(L.state);
+    const double strength_p = std::abs(wave_strength(m, L.state, nodes_[p].right.state, family));
+    const double strength_q = std::abs(wave_strength(m, nodes_[p].right.state, R.state, family));
+    const int kept = strength_p >= strength_q ? p : q;
+    const int gone = kept == p ? q : p;
+    for (int n : {p, q}) {
+      account_front_end(n, t);
+      if (nodes_[n].front_kind == FrontKind::rarefaction) error_fans_ += fan_error(n, t);
+    }
+    error_merges_ += best_cost;
+    ++merged_;
+    record_segment(nodes_[kept], t);
+    close_defect(nodes_[kept], t);
+    nodes_[p].right = R;  // p's right region was the middle state
+    link(nodes_[gone].prev, nodes_[gone].next);
+    if (kept == q) nodes_[q].right = R;
+    kill_node(gone, t);
+    set_front(kept, family, kind, m, L.state, R.state, t, X, x, off, t);
+    if (nodes_[kept].prev != kNone) schedule_meet(nodes_[kept].prev);
+    schedule_meet(kept);
+    id = kept;
+  }
+}
+
+/// For a linearly degenerate material the jumps of J+ and J− are carried independently, so
+/// two fronts p < q of one family f may be merged across fronts of the other family between
+/// them: regions left of the merged front's label X̄ take the f-invariant from before p,
+/// those right of it the one from after q; every region keeps its (−f)-invariant and the
+/// fronts between keep their jumps. X̄ is where the lab length is unchanged, so that every
+/// lab position outside stays as it was: between p and q for two steps of one sign, beyond
+/// them (as far as the next node) for a bump. The nodes between are re-anchored with lab
+/// positions rebuilt from the left. The L1 error is the f-invariant's change times the
+/// length it changes over. Without this, the fronts of layered bodies (reflections at every
+/// contact) multiply for ever, since same-family fronts are kept apart by the other
+/// family's. Returns true if merged.
+bool Tracker::merge_across(int p, int q, double t) {
+  const Material& m = *nodes_[p].right.material;
+  const int f = nodes_[p].family;
+  const int left_of_p = nodes_[p].prev, right_of_q = nodes_[q].next;
+  if (left_of_p == kNone || right_of_q == kNone) return false;
+  const auto invariant = [&](const State& st, int family) { return st.rapidity + family * m.riemann_psi(st.stretch); };
+  const State before = nodes_[left_of_p].right.state;
+  const State after_q = nodes_[q].right.state;
+  const double j_before = invariant(before, f), j_after_p = invariant(nodes_[p].right.state, f);
+  const double j_after_q = invariant(after_q, f);
+  const double Xp = nodes_[p].X_at(t), Xq = nodes_[q].X_at(t);
+  if (std::min(std::abs(j_after_p - j_before), std::abs(j_after_q - j_after_p)) * (Xq - Xp) > merge_) return false;
+  const auto with_invariant = [&](const State& st, double j_f) -> Solved<State> {
+    const double j_other = invariant(st, -f);
+    const double j_plus = f > 0 ? j_f : j_other, j_minus = f > 0 ? j_other : j_f;
+    const double psi = 0.5 * (j_plus - j_minus);
+    if (!(psi < m.psi_max() && psi > m.psi_min())) return Solved<State>::failure(Status::out_of_range);
+    const Solved<Stretch> stretch = m.stretch_at_psi(psi);
+    if (!stretch.ok()) return Solved<State>::failure(stretch.status);
+    return Solved<State>{State{0.5 * (j_plus + j_minus), stretch.value}, Status::ok};
+  };
+  // Segments left to right: the region before p (if of this material), those between p and
+  // q, the region after q (likewise). Each: its extent, old f-invariant, its states left and
+  // right of X̄, and the node at its right edge (kNone where that edge is p or q, which go).
+  segments_.clear();
+  const auto add = [&](double a, double b, const State& old, double j_old, int right_node) {
+    const Solved<State> left = with_invariant(old, j_before), right = with_invariant(old, j_after_q);
+    if (!left.ok() || !right.ok()) return false;
+    segments_.push_back(MergeSegment{a, b, old, j_old, left.value, right.value, right_node});
+    return true;
+  };
+  const bool extend_left = nodes_[left_of_p].kind == NodeKind::front && nodes_[nodes_[left_of_p].prev].right.material == &m;
+  const bool extend_right = nodes_[right_of_q].kind == NodeKind::front && nodes_[right_of_q].right.material == &m;
+  if (extend_left && !add(nodes_[left_of_p].X_at(t), Xp, before, j_before, kNone)) return false;
+  double a = Xp;
+  for (int n = nodes_[p].next;; n = nodes_[n].next) {
+    const int prev = nodes_[n].prev;
+    const double b = n == q ? Xq : nodes_[n].X_at(t);
+    if (!add(a, b, nodes_[prev].right.state, j_after_p, n == q ? kNone : n)) return false;
+    a = b;
+    if (n == q) break;
+  }
+  if (extend_right && !add(Xq, nodes_[right_of_q].X_at(t), after_q, j_after_q, right_of_q)) return false;
+  if (!extend_right) segments_.back().right_node = right_of_q;
+  // Lab length change as X̄ moves right from the first edge: all segments on their right
+  // states at first, each turning to its left state as X̄ passes it.
+  double change = 0.0;
+  for (const MergeSegment& g : segments_) change += (label_density(g.right) - label_density(g.old)) * (g.b - g.a);
+  double X_merged = kInf;
+  std::size_t split = 0;
+  for (std::size_t i = 0; i < segments_.size(); ++i) {
+    const MergeSegment& g = segments_[i];
+    const double rate = label_density(g.left) - label_density(g.right);
+    const double next = change + rate * (g.b - g.a);
+    if ((change <= 0.0 && next >= 0.0) || (change >= 0.0 && next <= 0.0)) {
+      X_merged = rate == 0.0 ? g.a : std::clamp(g.a - change / rate, g.a, g.b);
+      split = i;
+      break;
+    }
+    change = next;
+  }
+  if (!std::isfinite(X_merged)) return false;
+  const double margin = 64.0 * kEps * (1.0 + std::abs(X_merged));
+  if (X_merged <= segments_.front().a + margin || X_merged >= segments_.back().b - margin) return false;
+  double cost = 0.0;
+  for (std::size_t i = 0; i < segments_.size(); ++i) {
+    const MergeSegment& g = segments_[i];
+    const double left_part = i < split ? g.b - g.a : i == split ? X_merged - g.a : 0.0;
+    cost += std::abs(j_before - g.j_old) * left_part + std::abs(j_after_q - g.j_old) * (g.b - g.a - left_part);
+  }
+  if (cost > merge_) return false;
+
+  // Apply: p and q leave; one front of family f enters at X̄.
+  error_merges_ += cost;
+  ++merged_;
+  const int start = extend_left ? left_of_p : left_of_p;
+  double X_cursor = segments_.front().a;
+  double x_cursor = extend_left ? nodes_[left_of_p].x_at(t) : nodes_[p].x_at(t);
+  kill_node(p, t);
+  kill_node(q, t);
+  const int merged = new_node(NodeKind::front, nodes_[start].piece);
+  live_fronts_max_ = std::max(live_fronts_max_, ++live_fronts_);
+  ++result_.stats.fronts;
+  Node& mn = nodes_[merged];
+  mn.family = f;
+  mn.front_kind = FrontKind::contact;
+  mn.born = t;
+  int cursor = start;
+  const auto advance = [&](double X, const State& st) {
+    x_cursor += (X - X_cursor) * label_density(st);
+    X_cursor = X;
+  };
+  const auto place = [&](int id) {
+    Node& n = nodes_[id];
+    if (id != merged) record_segment(n, t);
+    link(cursor, id);
+    n.t0 = t;
+    n.X0 = X_cursor;
+    n.x0 = x_cursor;
+    ++n.version;
+    cursor = id;
+  };
+  nodes_[cursor].right = Region{&m, split == 0 ? segments_.front().left : segments_.front().right};
+  for (std::size_t i = 0; i < segments_.size(); ++i) {
+    const MergeSegment& g = segments_[i];
+    const State& here = i < split ? g.left : g.right;
+    if (i == split) {
+      advance(X_merged, g.left);
+      nodes_[cursor].right = Region{&m, g.left};
+      place(merged);
+      nodes_[merged].right = Region{&m, g.right};
+    } else {
+      nodes_[cursor].right = Region{&m, here};
+    }
+    advance(g.b, here);
+    if (g.right_node == right_of_q) break;
+    if (g.right_node != kNone) place(g.right_node);
+  }
+  link(cursor, right_of_q);
+  for (int n = nodes_[start].next; n != right_of_q; n = nodes_[n].next) {
+    const FrontSpeeds sp = characteristic_speeds(m, nodes_[n].right.state, nodes_[n].family);
+    nodes_[n].dXdt = sp.lagrangian;
+    nodes_[n].dxdt = sp.lab;
+  }
+  if (nodes_[start].kind == NodeKind::front) {
+    // Its right state changed: a front of this material keeps the speed of its side.
+    reanchor(start, t);
+    const FrontSpeeds sp = characteristic_speeds(m, nodes_[start].right.state, nodes_[start].family);
+    nodes_[start].dXdt = sp.lagrangian;
+    nodes_[start].dxdt = sp.lab;
+  }
+  if (nodes_[start].prev != kNone) schedule_meet(nodes_[start].prev);
+  for (int n = start; n != right_of_q; n = nodes_[n].next) schedule_meet(n);
+  return true;
+}
+
+/// Looks for a front of the same family within a few nodes of `id`, across fronts of the
+/// other family only, in one linearly degenerate material, and merges the two if cheap.
+void Tracker::merge_nearby(int id, double t) {
+  if (id == kNone || !nodes_[id].alive || nodes_[id].kind != NodeKind::front) return;
+  const Material* m = nodes_[id].right.material;
+  if (m == nullptr || !m->linearly_degenerate()) return;
+  const int f = nodes_[id].family;
+  for (int direction : {+1, -1}) {
+    int n = id;
+    for (int steps = 0; steps < kMergeReach; ++steps) {
+      n = direction > 0 ? nodes_[n].next : nodes_[n].prev;
+      if (n == kNone || nodes_[n].kind != NodeKind::front || nodes_[n].right.material != m) break;
+      if (direction < 0 && nodes_[nodes_[n].prev].right.material != m) break;
+      if (nodes_[n].family != f) continue;
+      if (direction > 0 ? merge_across(id, n, t) : merge_across(n, id, t)) return;
+      break;
+    }
+  }
+}
+
+double Tracker::fan_error(int id, double t) const {
+  const Node& n = nodes_[id];
+  const Region& left = nodes_[n.prev].right;
+  const Region& right = n.right;
+  const Material& m = *right.material;
+  const double strength = std::abs(wave_strength(m, left.state, right.state, n.family));
+  const double spread = std::abs(characteristic_speed(m, left.state, n.family) -
+                                 characteristic_speed(m, right.state, n.family)) * (t - n.born);
+  // No wider than the room between its neighbours: a staircase of steps misses the ramp it
+  // stands for by σ/4 of the spacing.
+  const double room = 0.5 * (nodes_[n.next].X_at(t) - nodes_[n.prev].X_at(t));
+  return 0.5 * strength * std::min(spread, room);
+}
+
+}  // namespace rigidity::characteristics

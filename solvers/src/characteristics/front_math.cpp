@@ -1,0 +1,104 @@
+#include "front_math.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+
+namespace rigidity::characteristics {
+
+namespace {
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+}  // namespace
+
+double wave_strength(const Material& m, const State& a, const State& b, int family) {
+  return (b.rapidity - a.rapidity) + family * (m.riemann_psi(b.stretch) - m.riemann_psi(a.stretch));
+}
+
+FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b, int family) {
+  const double ca = std::cosh(a.rapidity);
+  const double half = 0.5 * (b.rapidity - a.rapidity);
+  const double denominator =
+      a.stretch.value() * (std::expm1(b.stretch.log() - a.stretch.log()) * ca -
+                           2.0 * std::sinh(0.5 * (a.rapidity + b.rapidity)) * std::sinh(half));
+  const double speed = -std::sinh(b.rapidity - a.rapidity) / denominator;
+  if (!std::isfinite(speed) || denominator == 0.0) {
+    const FrontSpeeds sa = characteristic_speeds(m, a, family), sb = characteristic_speeds(m, b, family);
+    return FrontSpeeds{0.5 * (sa.lagrangian + sb.lagrangian), 0.5 * (sa.lab + sb.lab)};
+  }
+  return FrontSpeeds{speed, std::tanh(a.rapidity) + speed * a.stretch.value() / ca};
+}
+
+Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch star, int family) {
+  const double s0 = outer.stretch.value(), s = star.value();
+  const double dp = m.pressure(star) - m.pressure(outer.stretch);
+  const double w = m.enthalpy_density(star);
+  const double qa = s * s * w * w;
+  const double qb = 2.0 * s * s * w - dp * s0 * s0;
+  const double qc = s0 * s0 * std::expm1(2.0 * (star.log() - outer.stretch.log()));
+  const double disc = qb * qb - 4.0 * qa * qc;
+  if (!(disc >= 0.0) || dp == 0.0) return Solved<double>::failure(Status::out_of_range);
+  const double root = std::sqrt(disc);
+  const double y = qb >= 0.0 ? 2.0 * qc / (-qb - root) : (-qb + root) / (2.0 * qa);
+  const double u2 = dp * y;
+  if (!(u2 >= 0.0) || !(dp + w * u2 != 0.0) || ((dp + w * u2) > 0.0) != (dp > 0.0))
+    return Solved<double>::failure(Status::out_of_range);
+  const double relative = std::asinh(std::sqrt(u2));
+  // A compression slows the state behind a C− shock (it moves against the family's direction).
+  const double direction = m.riemann_psi(star) > m.riemann_psi(outer.stretch) ? family : -family;
+  return Solved<double>{outer.rapidity + direction * relative, Status::ok};
+}
+
+Solved<double> curve_rapidity(const Material& m, const State& outer, double psi_outer, double z, int family) {
+  const Stretch s = Stretch::from_log(z);
+  if (wave_is_shock(m, outer, s, family)) return hugoniot_rapidity(m, outer, s, family);
+  return Solved<double>{outer.rapidity + family * (m.riemann_psi(s) - psi_outer), Status::ok};
+}
+
+Solved<State> same_material_star(const Material& m, const State& left, const State& right, const State& guess) {
+  const double psi_left = m.riemann_psi(left.stretch), psi_right = m.riemann_psi(right.stretch);
+  double rapidity = guess.rapidity;
+  auto mismatch = [&](double z, double& g) {
+    const Solved<double> a = curve_rapidity(m, left, psi_left, z, -1);
+    const Solved<double> b = curve_rapidity(m, right, psi_right, z, +1);
+    if (!a.ok() || !b.ok()) return false;
+    g = a.value - b.value;
+    rapidity = 0.5 * (a.value + b.value);
+    return std::isfinite(g);
+  };
+  double z0 = guess.stretch.log(), g0 = 0.0;
+  if (!mismatch(z0, g0)) return Solved<State>::failure(Status::not_converged);
+  if (g0 == 0.0) return Solved<State>{State{rapidity, guess.stretch}, Status::ok};
+  // dφ/d ln s is +c_s on the C− curve and −c_s on the C+ curve near the star: g' ≈ 2 c_s.
+  double z1 = z0 - g0 / (2.0 * m.sound_speed(guess.stretch)), g1 = 0.0;
+  for (int iteration = 0; iteration < 40; ++iteration) {
+    const StretchRange range = m.admissible();
+    if (!(z1 > range.log_min && z1 < range.log_max)) return Solved<State>::failure(Status::out_of_range);
+    if (!mismatch(z1, g1)) return Solved<State>::failure(Status::not_converged);
+    if (g1 == 0.0 || std::abs(z1 - z0) <= 2.0 * kEps * (1.0 + std::abs(z1)))
+      return Solved<State>{State{rapidity, Stretch::from_log(z1)}, Status::ok};
+    if (g1 == g0) return Solved<State>::failure(Status::not_converged);
+    const double z2 = z1 - g1 * (z1 - z0) / (g1 - g0);
+    z0 = z1;
+    g0 = g1;
+    z1 = z2;
+  }
+  return Solved<State>::failure(Status::not_converged);
+}
+
+bool same_state(const State& a, const State& b) {
+  return std::abs(a.rapidity - b.rapidity) <= 4.0 * kEps * (1.0 + std::abs(a.rapidity)) &&
+         std::abs(a.stretch.log() - b.stretch.log()) <= 4.0 * kEps * (1.0 + std::abs(a.stretch.log()));
+}
+
+bool touching(double x1, double x2) { return std::abs(x1 - x2) <= 64.0 * kEps * std::max({1.0, std::abs(x1), std::abs(x2)}); }
+
+std::string number(double v) {
+  std::ostringstream os;
+  os.precision(12);
+  os << v;
+  return os.str();
+}
+
+}  // namespace rigidity::characteristics

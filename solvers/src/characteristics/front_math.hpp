@@ -1,0 +1,50 @@
+#pragma once
+// Closed forms the front tracker is built on: the strength of a wave, the speed of a front
+// from the label jump condition, the Hugoniot in closed form and the exact star state of
+// two states of one material.
+#include <string>
+
+#include "rigidity/material.hpp"
+#include "rigidity/solvers/riemann.hpp"
+#include "rigidity/status.hpp"
+
+namespace rigidity::characteristics {
+
+/// The strength of a wave of family `family` between two states of one material: the jump
+/// of its own Riemann invariant (J+ = φ + Ψ for a C+ wave, J− = φ − Ψ for a C− wave), in
+/// units of rapidity whatever the material. Signed: from `a` to `b`.
+double wave_strength(const Material& m, const State& a, const State& b, int family);
+
+/// Both speeds of a front between states a (left) and b (right) from the label jump condition
+/// m [s/γ] = −[v]; its lab speed is then the same seen from either side, so lab positions
+/// stay continuous across it. Written without cancellation for weak fronts:
+/// m = −sinh(φb − φa) / (sb cosh φa − sa cosh φb). Falls back to the mean characteristic
+/// speed of family `family` where the jump is too small to define it.
+FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b, int family);
+
+/// The rapidity of the state at stretch `star` that a shock of family `family` connects to
+/// `outer`, in closed form. In the rest frame of the outer state the label and momentum jump
+/// conditions, with u = γv of the star, give Δp s0 γ = s (Δp + w u²) (w = e + p at the star),
+/// a quadratic in Y = u²/Δp:  s²w² Y² + (2 s² w − Δp s0²) Y + (s² − s0²) = 0,
+/// whose root of the sign of Δp is taken in its stable form. Rapidities add along the line.
+Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch star, int family);
+
+/// The rapidity at stretch e^z on the wave curve of family `family` through `outer`: the
+/// closed-form Hugoniot where that wave is a shock, else the integral curve (the other
+/// family's invariant carried across: φ = φ_outer + family (Ψ − Ψ_outer)).
+Solved<double> curve_rapidity(const Material& m, const State& outer, double psi_outer, double z, int family);
+
+/// The exact star state between two states of one material: ln s* where the C− curve
+/// through `left` meets the C+ curve through `right`, by secant steps from `guess` (the
+/// two-rarefaction star, within third order of the answer for weak waves). Every curve is
+/// closed form, so a weak interaction costs a few evaluations of the material.
+Solved<State> same_material_star(const Material& m, const State& left, const State& right, const State& guess);
+
+bool same_state(const State& a, const State& b);
+
+/// Lab positions equal up to the round-off of summing segment lengths.
+bool touching(double x1, double x2);
+
+std::string number(double v);
+
+}  // namespace rigidity::characteristics

@@ -1,0 +1,623 @@
+// Fronts meeting: the next meeting of a node, interactions done in place, full Riemann problems at a point, the waves they emit, and weak waves held back at interfaces and contacts.
+#include "tracker.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "rigidity/errors.hpp"
+
+namespace rigidity::characteristics {
+
+void Tracker::schedule_meet(int a) {
+  const Node& na = nodes_[a];
+  const int b = na.next;
+  if (b != kNone) {
+    const Node& nb = nodes_[b];
+    const double closing = na.dXdt - nb.dXdt;
+    if (closing > 0.0) {
+      const double t_ref = std::max(na.t0, nb.t0);
+      const double gap = std::max(0.0, nb.X_at(t_ref) - na.X_at(t_ref));
+      const double t = t_ref + gap / closing;
+      if (t <= scene_.t_end) {
+        meetings_.set(a, t, seq_++);
+        return;
+      }
+    }
+  }
+  meetings_.erase(a);
+}
+
+/// Two fronts of one material meeting with nothing else there, done in place: they leave
+/// as a C− front (in a's node) and a C+ front (in b's node) around the star state of the
+/// two-rarefaction solver, J+ from the left state and J− from the right one. For a linearly
+/// degenerate material that star is exact. For a genuinely nonlinear one it misses the exact
+/// star by the jump of the other invariant across the shocks, third order in their strength:
+/// it is used when that jump, computed from the closed-form Hugoniot, is below the weak-wave
+/// threshold, and the front carries it as an error rate for as long as it lives; a C− wave
+/// left weaker than the threshold by two fronts of one family merging is held back (its
+/// strength times the length it could sweep is booked). Returns false (doing nothing) when
+/// the full Riemann problem is needed: a crowd, a strong shock, a fan to split, cavitation.
+bool Tracker::interact_in_place(int a, int b, double t) {
+  if (result_.stats.interactions >= scene_.solver.max_interactions) return false;  // resolve_group reports it
+  Node& na = nodes_[a];
+  Node& nb = nodes_[b];
+  if (na.kind != NodeKind::front || nb.kind != NodeKind::front) return false;
+  const Node& before = nodes_[na.prev];
+  const Node& after = nodes_[nb.next];
+  const Material* m = before.right.material;
+  if (m != nb.right.material || m != na.right.material) return false;
+  const bool degenerate = m->linearly_degenerate();
+  if (degenerate && (na.family != +1 || nb.family != -1)) return false;
+  const double X = 0.5 * (na.X_at(t) + nb.X_at(t));
+  const double tolerance = 8.0 * kEps * (1.0 + std::abs(X));
+  if (before.X_at(t) >= X - tolerance || after.X_at(t) <= X + tolerance) return false;  // a crowd: resolve in full
+  const State& left = before.right.state;
+  const State& right = nb.right.state;
+  const double j_plus = left.rapidity + m->riemann_psi(left.stretch);
+  const double j_minus = right.rapidity - m->riemann_psi(right.stretch);
+  const double psi_star = 0.5 * (j_plus - j_minus);
+  if (!(psi_star < m->psi_max())) return false;
+  if (m->cavitation_pressure() > -kInf) {
+    const Solved<Stretch> parting = m->stretch_at_pressure(m->cavitation_pressure());
+    if (!parting.ok() || psi_star < m->riemann_psi(parting.value)) return false;
+  }
+  const Solved<Stretch> star_stretch = m->stretch_at_psi(psi_star);
+  if (!star_stretch.ok()) return false;
+  State star{0.5 * (j_plus + j_minus), star_stretch.value};
+
+  // The outgoing waves: kinds, and for shocks their distance from the exact Hugoniot.
+  FrontKind kinds[2] = {FrontKind::contact, FrontKind::contact};
+  double off_hugoniot[2] = {0.0, 0.0};
+  bool held_back = false;  // the C− wave, weaker than the threshold, is not emitted
+  double held_strength = 0.0;
+  if (degenerate) {
+    if (same_state(star, left) || same_state(star, right)) return false;  // a wave vanishes
+  } else {
+    const Solved<State> exact_star = same_material_star(*m, left, right, star);
+    if (!exact_star.ok()) return false;
+    star = exact_star.value;
+    held_strength = std::abs(wave_strength(*m, left, star, -1));
+    if (held_strength < weak_merging_ && na.family == nb.family) {
+      held_back = true;
+      star = left;
+    }
+    for (int k = held_back ? 1 : 0; k < 2; ++k) {
+      const int family = k == 0 ? -1 : +1;
+      const State& outer = k == 0 ? left : right;
+      if (same_state(outer, star)) return false;
+      if (wave_is_shock(*m, outer, star.stretch, family)) {
+        kinds[k] = FrontKind::shock;
+        const Solved<double> exact = hugoniot_rapidity(*m, outer, star.stretch, family);
+        if (!exact.ok()) return false;
+        off_hugoniot[k] = std::abs(exact.value - star.rapidity);
+        if (!(off_hugoniot[k] < weak_)) return false;
+      } else {
+        kinds[k] = FrontKind::rarefaction;
+        const double span = std::abs(m->riemann_psi(star.stretch) - m->riemann_psi(outer.stretch));
+        if (span >= 2.0 * fan_step_) return false;  // a fan to split in steps
+      }
+    }
+  }
+
+  if (held_back && !(std::abs(label_jump_speeds(*m, left, right, +1).lab) < 1.0)) return false;  // no faster than light
+
+  // Fan steps keep their age through the interaction when they leave as the only step of
+  // their family; otherwise the error they carry is booked now.
+  double born[2] = {t, t};
+  for (Node* n : {&na, &nb}) {
+    if (n->front_kind != FrontKind::rarefaction) continue;
+    const int k = n->family > 0 ? 1 : 0;
+    const bool continues = kinds[k] == FrontKind::rarefaction && !(held_back && k == 0) &&
+                           (na.family != nb.family || degenerate);
+    if (continues && born[k] == t) {
+      born[k] = n->born;
+    } else {
+      error_fans_ += fan_error(static_cast<int>(n - nodes_.data()), t);
+    }
+  }
+
+  ++result_.stats.interactions;
+  steer_merges();
+  const double x = 0.5 * (na.x_at(t) + nb.x_at(t));
+  close_defect(na, t);
+  close_defect(nb, t);
+  record_segment(na, t);
+  record_segment(nb, t);
+  if (held_back) {
+    error_defects_ += held_strength * std::min(piece_length(na.piece),
+                                               std::abs(characteristic_speed(*m, left, -1)) * (scene_.t_end - t));
+    ++suppressed_;
+    const int keep_before = na.prev;
+    account_front_end(a, t);  // its shock books close while its neighbours are still its own
+    link(keep_before, b);
+    kill_node(a, t);
+    set_front(b, +1, kinds[1], *m, left, right, t, X, x, off_hugoniot[1], born[1]);
+    schedule_meet(keep_before);
+    schedule_meet(b);
+    return true;
+  }
+  account_front_end(a, t);
+  account_front_end(b, t);
+  result_.stats.fronts += 2;
+  set_front(a, -1, kinds[0], *m, left, star, t, X, x, off_hugoniot[0], born[0]);
+  set_front(b, +1, kinds[1], *m, star, right, t, X, x, off_hugoniot[1], born[1]);
+  na.right.state = star;
+  schedule_meet(na.prev);
+  schedule_meet(a);
+  schedule_meet(b);
+  if (degenerate) {
+    merge_nearby(a, t);
+    merge_nearby(b, t);
+  } else {
+    merge_neighbours(a, t);
+    merge_neighbours(b, t);
+  }
+  return true;
+}
+
+/// A front of family `family` between the states `left` and `right` of material m, leaving
+/// (X, x) at time t. Jumps of a linearly degenerate material move at the characteristic
+/// speed; shocks and fan steps at the speed the label jump condition gives, so that the lab
+/// position of every label stays continuous across them.
+void Tracker::set_front(int id, int family, FrontKind kind, const Material& m, const State& left, const State& right,
+                        double t, double X, double x, double off_hugoniot, double born) {
+  Node& n = nodes_[id];
+  const FrontSpeeds speeds = kind == FrontKind::contact ? characteristic_speeds(m, right, family)
+                                                        : label_jump_speeds(m, left, right, family);
+  n.born = born;
+  n.family = family;
+  n.front_kind = kind;
+  n.dXdt = speeds.lagrangian;
+  n.dxdt = speeds.lab;
+  n.t0 = t;
+  n.X0 = X;
+  n.x0 = x;
+  ++n.version;
+  n.defect_rate = off_hugoniot * std::abs(speeds.lagrangian);
+  n.defect_since = t;
+  n.defect_cap = off_hugoniot * piece_length(n.piece);
+}
+
+void Tracker::resolve(int seed_left, int seed_right, double t) {
+  group_.clear();
+  // Gather every node at the meeting point: the seeds, their neighbours at the same
+  // label, and across a body contact the other body's nodes at its end.
+  int first = seed_left;
+  for (;;) {
+    const Node& n = nodes_[first];
+    if (n.kind == NodeKind::left_end) {
+      if (n.attach != Attach::body) break;
+      first = n.partner;
+      continue;
+    }
+    const int p = n.prev;
+    if (p == kNone) break;
+    const double X = n.X_at(t), Xp = nodes_[p].X_at(t);
+    if (!(Xp >= X - 8.0 * kEps * (1.0 + std::abs(X)))) break;
+    first = p;
+  }
+  int last = seed_right;
+  for (;;) {
+    const Node& n = nodes_[last];
+    if (n.kind == NodeKind::right_end) {
+      if (n.attach != Attach::body) break;
+      last = n.partner;
+      continue;
+    }
+    const int q = n.next;
+    if (q == kNone) break;
+    const double X = n.X_at(t), Xq = nodes_[q].X_at(t);
+    if (!(Xq <= X + 8.0 * kEps * (1.0 + std::abs(X)))) break;
+    last = q;
+  }
+  for (int n = first;;) {
+    group_.push_back(n);
+    if (n == last) break;
+    const Node& node = nodes_[n];
+    n = node.kind == NodeKind::right_end ? node.partner : node.next;
+  }
+  resolve_group(group_, t);
+}
+
+void Tracker::wave(const Material& m, const State& outer, const State& star, int family, WaveStates& w) {
+  w.states.clear();
+  w.shock = false;
+  w.states.push_back(outer);
+  if (same_state(outer, star)) return;
+  if (m.linearly_degenerate()) {
+    w.states.push_back(star);
+    return;
+  }
+  if (wave_is_shock(m, outer, star.stretch, family)) {
+    w.shock = true;
+    w.states.push_back(star);
+    return;
+  }
+  // A rarefaction fan: states along the invariant of the other family, in steps of Ψ.
+  const double psi_outer = m.riemann_psi(outer.stretch), psi_star = m.riemann_psi(star.stretch);
+  const double span = std::abs(psi_star - psi_outer);
+  // Steps between one and two fan steps wide: a step that has grown through interactions is
+  // split only once it has doubled, so that crossings do not multiply the fronts of a fan.
+  // The step count in double first: span / tolerance overflows an int for tolerances of 1e-11.
+  const double wanted = std::floor(span / fan_step_);
+  if (wanted > kMaxFanSteps) fan_capped_ = true;
+  const int steps = std::max(1, static_cast<int>(std::min(wanted, static_cast<double>(kMaxFanSteps))));
+  // J carried across: J+ = φ + Ψ for a C− fan, J− = φ − Ψ for a C+ fan.
+  const double invariant = family < 0 ? outer.rapidity + psi_outer : outer.rapidity - psi_outer;
+  for (int k = 1; k < steps; ++k) {
+    const double psi = psi_outer + (psi_star - psi_outer) * k / steps;
+    const Solved<Stretch> s = m.stretch_at_psi(psi);
+    if (!s.ok()) throw NumericalError("a rarefaction fan state could not be found (Ψ = " + number(psi) + ")");
+    w.states.push_back(State{family < 0 ? invariant - psi : invariant + psi, s.value});
+  }
+  w.states.push_back(star);
+  return;
+}
+
+void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, int piece, double t, double X,
+                          double x, std::vector<int>& out) {
+  out.clear();
+  const std::size_t jumps = w.states.size() - 1;
+  for (std::size_t k = 0; k < jumps; ++k) {
+    const State& outer = w.states[k];
+    const State& inner = w.states[k + 1];
+    const int id = new_node(NodeKind::front, piece);
+    Node& n = nodes_[id];
+    n.family = family;
+    n.t0 = t;
+    n.X0 = X;
+    n.x0 = x;
+    n.born = t;
+    if (w.shock) {
+      n.front_kind = FrontKind::shock;
+      const FrontSpeeds sp = family < 0 ? label_jump_speeds(m, outer, inner, family)
+                                        : label_jump_speeds(m, inner, outer, family);
+      n.dXdt = sp.lagrangian;
+      n.dxdt = sp.lab;
+    } else {
+      if (m.linearly_degenerate()) {
+        // A linearly degenerate jump moves at the characteristic speed, the same on both sides.
+        n.front_kind = FrontKind::contact;
+        const FrontSpeeds sp = characteristic_speeds(m, inner, family);
+        n.dXdt = sp.lagrangian;
+        n.dxdt = sp.lab;
+      } else {
+        // A fan step moves at the speed the label jump condition gives it, within second
+        // order of the mean of the characteristic speeds on its two sides.
+        n.front_kind = FrontKind::rarefaction;
+        const FrontSpeeds sp = family < 0 ? label_jump_speeds(m, outer, inner, family)
+                                          : label_jump_speeds(m, inner, outer, family);
+        n.dXdt = sp.lagrangian;
+        n.dxdt = sp.lab;
+      }
+    }
+    out.push_back(id);
+    live_fronts_max_ = std::max(live_fronts_max_, ++live_fronts_);
+    ++result_.stats.fronts;
+  }
+  if (live_fronts_ > scene_.solver.max_fronts) {
+    throw NumericalError("more than solver.max_fronts = " + std::to_string(scene_.solver.max_fronts) +
+                         " live fronts at t = " + number(t) +
+                         "; raise solver.tolerance (coarser fans) or solver.max_fronts");
+  }
+}
+
+void Tracker::reanchor(int id, double t) {
+  Node& n = nodes_[id];
+  const double X = n.X_at(t), x = n.x_at(t);
+  record_segment(n, t);
+  n.t0 = t;
+  n.X0 = X;
+  n.x0 = x;
+  ++n.version;
+}
+
+void Tracker::resolve_group(std::vector<int>& group, double t) {
+  // Interactions that keep recreating themselves at one instant (a fan whose steps would
+  // converge: a material not convex in the sense the Riemann solver assumes) stop the run.
+  if (t != last_interaction_t_) {
+    last_interaction_t_ = t;
+    interactions_at_this_t_ = 0;
+  } else if (++interactions_at_this_t_ > 100 * (static_cast<long>(nodes_.size()) + 100)) {
+    throw NumericalError("the interactions at t = " + number(t) +
+                         " do not advance in time: the waves of a material keep recreating each other there"
+                         " (a material not convex in the sense the Riemann solver assumes?)");
+  }
+  steer_merges();
+  if (++result_.stats.interactions > scene_.solver.max_interactions) {
+    throw NumericalError("more than solver.max_interactions = " + std::to_string(scene_.solver.max_interactions) +
+                         " interactions by t = " + number(t) + " (of t_end = " + number(scene_.t_end) +
+                         "); the bodies keep fragmenting or colliding: shorten time.end, coarsen solver.tolerance"
+                         " or raise solver.max_interactions");
+  }
+  const int first = group.front(), last = group.back();
+  const Node& nf = nodes_[first];
+  const Node& nl = nodes_[last];
+  const bool left_boundary = nf.kind == NodeKind::left_end;
+  const bool right_boundary = nl.kind == NodeKind::right_end;
+  if (left_boundary && right_boundary) throw NumericalError("a piece of zero length at t = " + number(t));
+
+  // Structural nodes that survive the interaction.
+  int interface = kNone, contact_left = kNone, contact_right = kNone;
+  for (int id : group) {
+    const Node& n = nodes_[id];
+    if (n.kind == NodeKind::interface) interface = id;
+    if (n.kind == NodeKind::right_end && id != last) contact_left = id;
+    if (n.kind == NodeKind::left_end && id != first) contact_right = id;
+  }
+  // Where the meeting happens in the lab and in each piece's labels.
+  double x = 0.0;
+  {
+    int anchor = interface != kNone ? interface : contact_left != kNone ? contact_left : kNone;
+    if (anchor == kNone && left_boundary) anchor = first;
+    if (anchor == kNone && right_boundary) anchor = last;
+    if (anchor != kNone) {
+      x = nodes_[anchor].x_at(t);
+    } else {
+      double sum = 0.0;
+      for (int id : group) sum += nodes_[id].x_at(t);
+      x = sum / static_cast<double>(group.size());
+    }
+  }
+  auto label_in = [&](int piece) {
+    for (int id : group)
+      if (nodes_[id].piece == piece && nodes_[id].kind != NodeKind::front) return nodes_[id].X_at(t);
+    double sum = 0.0;
+    int count = 0;
+    for (int id : group)
+      if (nodes_[id].piece == piece) sum += nodes_[id].X_at(t), ++count;
+    return sum / count;
+  };
+
+  // The outer states and the problem they pose.
+  const int before = left_boundary ? kNone : nf.prev;   // node whose right region is the left state
+  const int after = right_boundary ? kNone : last;      // node whose right region is the right state
+  const Region left_region = before != kNone ? nodes_[before].right : Region{};
+  const Region right_region = after != kNone ? nodes_[after].right : Region{};
+  const int left_piece = nf.piece, right_piece = nl.piece;
+
+  // Walls attached at either end lose their current contact pressure now.
+  if (left_boundary && nf.attach == Attach::boundary) flush_wall(nf.partner, t);
+  if (right_boundary && nl.attach == Attach::boundary) flush_wall(nl.partner, t);
+
+  // Remove the fronts of the group; keep ends and interfaces. Their energy books
+  // are closed first, while each front's neighbours are still the states it separated.
+  // A rarefaction step that leaves as the only step of its family keeps its age (its
+  // fan error goes on growing); otherwise the error it carries is booked now.
+  int steps_in[2] = {0, 0};
+  double steps_born[2] = {0.0, 0.0}, steps_error[2] = {0.0, 0.0};
+  for (int id : group) {
+    Node& n = nodes_[id];
+    close_defect(n, t);
+    if (n.kind != NodeKind::front) continue;
+    account_front_end(id, t);
+    if (n.front_kind == FrontKind::rarefaction) {
+      const int f = n.family > 0 ? 1 : 0;
+      ++steps_in[f];
+      steps_born[f] = n.born;
+      steps_error[f] += fan_error(id, t);
+    }
+  }
+  for (int id : group)
+    if (nodes_[id].kind == NodeKind::front) {
+      const int p = nodes_[id].prev, n = nodes_[id].next;
+      link(p, n);
+      kill_node(id, t);
+    }
+
+  RiemannSolution sol;
+  const Material* mL = left_region.material;
+  const Material* mR = right_region.material;
+  if (left_boundary || right_boundary) {
+    const int end = left_boundary ? first : last;
+    const Node& e = nodes_[end];
+    const Material& m = left_boundary ? *mR : *mL;
+    const State& st = left_boundary ? right_region.state : left_region.state;
+    const Side side = left_boundary ? Side::right : Side::left;
+    if (e.attach == Attach::boundary) {
+      const Wall& w = walls_[e.partner];
+      const double min_p = w.bonded ? m.cavitation_pressure() : std::max(0.0, m.cavitation_pressure());
+      sol = solve_wall(m, st, side, w.rapidity, min_p);
+    } else {
+      sol = solve_free_end(m, st, side);
+    }
+    require_solved(sol, m, t, x);
+    if (sol.parted && e.attach == Attach::boundary) {
+      Wall& w = walls_[e.partner];
+      w.attached = kNone;
+      ++w.version;
+      set_attach(end, Attach::free, kNone, t);
+      event(t, "separation", x, {piece_body_name(e.piece)});
+    }
+  } else {
+    double min_p;
+    if (contact_left != kNone) {
+      min_p = std::max({0.0, mL->cavitation_pressure(), mR->cavitation_pressure()});
+    } else {
+      min_p = std::max(mL->cavitation_pressure(), mR->cavitation_pressure());
+    }
+    sol = solve_riemann(*mL, left_region.state, *mR, right_region.state, min_p);
+    require_solved(sol, sol.status == Status::out_of_range && mR->psi_max() < mL->psi_max() ? *mR : *mL, t, x);
+    const int holder = interface != kNone ? interface : contact_left;
+    if (holder != kNone && !sol.parted) hold_back_weak_wave(sol, left_region, right_region, holder, min_p, t);
+  }
+
+  // Emit the waves.
+  const double XL = label_in(left_piece), XR = label_in(right_piece);
+  emitted_left_.clear();
+  emitted_right_.clear();
+  WaveStates& wl = wave_left_;
+  WaveStates& wr = wave_right_;
+  wl.states.clear();
+  wr.states.clear();
+  if (!left_boundary) {
+    wave(*mL, left_region.state, sol.left, -1, wl);
+    emit_fronts(*mL, wl, -1, left_piece, t, XL, x, emitted_left_);
+  }
+  if (!right_boundary) {
+    wave(*mR, right_region.state, sol.right, +1, wr);
+    emit_fronts(*mR, wr, +1, right_piece, t, XR, x, emitted_right_);
+    // Emitted from the outer state inwards; in space the C+ fan's head (next to the
+    // right state) is its rightmost front.
+    std::reverse(emitted_right_.begin(), emitted_right_.end());
+  }
+
+  for (int f = 0; f < 2; ++f) {
+    const std::vector<int>& out = f == 0 ? emitted_left_ : emitted_right_;
+    if (steps_in[f] == 1 && out.size() == 1 && nodes_[out.front()].front_kind == FrontKind::rarefaction) {
+      nodes_[out.front()].born = steps_born[f];
+    } else {
+      error_fans_ += steps_error[f];
+    }
+  }
+
+  // Link: [before] − fronts [centre] + fronts [right state holder].
+  // The region right of the C− fronts is the left star state, left of the C+ fronts the right star state.
+  auto states_of_left = [&](std::size_t k) -> Region { return Region{mL, wl.states[k + 1]}; };
+  auto states_of_right = [&](std::size_t k, std::size_t m) -> Region {
+    // C+ fronts listed left to right: front k separates states m-k and m-k-1.
+    return Region{mR, wr.states[m - k - 1]};
+  };
+
+  bool parted_inside = !left_boundary && !right_boundary && sol.parted && contact_left == kNone;
+  if (!left_boundary && !right_boundary && sol.parted && contact_left != kNone) {
+    // Two bodies in contact separate.
+    set_attach(contact_left, Attach::free, kNone, t);
+    set_attach(contact_right, Attach::free, kNone, t);
+    event(t, "separation", x, {piece_body_name(left_piece), piece_body_name(right_piece)});
+  }
+
+  // Left part: before → C− fronts → (interface | contact_left | new right end | first C+ front ...)
+  int cursor = left_boundary ? first : before;
+  for (std::size_t k = 0; k < emitted_left_.size(); ++k) {
+    const int id = emitted_left_[k];
+    nodes_[id].right = states_of_left(k);
+    const int next = nodes_[cursor].next;
+    link(cursor, id);
+    link(id, next);
+    cursor = id;
+  }
+  // Right part, inserted after the node that holds the right star region.
+  int right_holder;  // node whose right region becomes the right star state
+  if (left_boundary) {
+    right_holder = first;
+  } else if (right_boundary) {
+    right_holder = kNone;
+  } else if (interface != kNone) {
+    right_holder = interface;
+  } else if (contact_right != kNone) {
+    right_holder = contact_right;
+  } else {
+    right_holder = cursor;  // plain crossing: the C+ fronts follow the C− fronts
+  }
+  if (parted_inside) {
+    // The body parts here (cavitation, or an interface that cannot hold).
+    const int left_of_crack = cursor;
+    int right_of_crack = nodes_[cursor].next;
+    if (interface != kNone) {
+      right_of_crack = nodes_[interface].next;
+      link(nodes_[interface].prev, right_of_crack);
+      kill_node(interface, t);
+      interface = kNone;
+    }
+    const Region right_first = emitted_right_.empty() ? right_region : Region{mR, wr.states.back()};
+    split_piece(left_of_crack, right_of_crack, sol.left, sol.right, Region{}, right_first, t, XL, x);
+    right_holder = pieces_.back().left_end;
+    event(t, "cavitation", x, {piece_body_name(left_piece)});
+  }
+  if (right_holder != kNone) {
+    const std::size_t m = emitted_right_.size();
+    nodes_[right_holder].right = m > 0 ? Region{mR, wr.states.back()} : right_region;
+    int c = right_holder;
+    for (std::size_t k = 0; k < m; ++k) {
+      const int id = emitted_right_[k];
+      nodes_[id].right = states_of_right(k, m);
+      nodes_[id].piece = nodes_[c].piece;
+      const int next = nodes_[c].next;
+      link(c, id);
+      link(id, next);
+      c = id;
+    }
+  }
+
+  // Structural nodes move with the material next to them; an end whose lab speed
+  // changes may now close (or open) a gap.
+  touched_.clear();
+  bool ends_moved = false;
+  auto settle = [&](int id) {
+    if (id == kNone || !nodes_[id].alive) return;
+    const Node& n = nodes_[id];
+    const Region& r = n.kind == NodeKind::right_end ? nodes_[n.prev].right : n.right;
+    const double v = std::tanh(r.state.rapidity);
+    if (v == n.dxdt) return;
+    reanchor(id, t);
+    nodes_[id].dxdt = v;
+    if (nodes_[id].is_end()) ends_moved = true;
+  };
+  const int new_piece = parted_inside ? static_cast<int>(pieces_.size()) - 1 : kNone;
+  settle(interface);
+  if (left_boundary) settle(first);
+  if (right_boundary) settle(last);
+  settle(contact_left);
+  settle(contact_right);
+  if (parted_inside) {
+    settle(pieces_[left_piece].right_end);
+    settle(pieces_[new_piece].left_end);
+  }
+
+  // New meetings: each node of the rebuilt stretch with its right neighbour.
+  touched_.push_back(left_boundary ? first : before);
+  touched_.insert(touched_.end(), emitted_left_.begin(), emitted_left_.end());
+  if (right_holder != kNone) touched_.push_back(right_holder);
+  touched_.insert(touched_.end(), emitted_right_.begin(), emitted_right_.end());
+  if (interface != kNone) touched_.push_back(interface);
+  std::sort(touched_.begin(), touched_.end());
+  touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
+  for (int id : touched_) schedule_meet(id);
+  for (int id : emitted_left_) merge_neighbours(id, t);
+  for (int id : emitted_right_) merge_neighbours(id, t);
+  for (int id : emitted_left_) merge_nearby(id, t);
+  for (int id : emitted_right_) merge_nearby(id, t);
+  if (ends_moved || sol.parted)
+    for (int p : {left_piece, right_piece, new_piece})
+      if (p != kNone) schedule_gaps_around(p);
+}
+
+/// Bressan's idea at an interface or a contact, where a wave arriving splits in two: when
+/// one of the outgoing waves is weaker than the threshold, it is not emitted. The side it
+/// would have crossed keeps its state, the other side's wave is re-solved to the same
+/// velocity (so the bodies stay together and every lab position stays consistent), and
+/// the pressure jump left at the node is the wave held back. It leaves with the next wave
+/// that reaches the node, which solves the node's full Riemann problem again; until then
+/// it costs its strength times the distance it would have travelled.
+void Tracker::hold_back_weak_wave(RiemannSolution& sol, const Region& left, const Region& right, int holder,
+                                  double min_pressure, double t) {
+  const double weak_left = std::abs(wave_strength(*left.material, left.state, sol.left, -1));
+  const double weak_right = std::abs(wave_strength(*right.material, right.state, sol.right, +1));
+  const double weaker = std::min(weak_left, weak_right);
+  if (!(weaker < weak_) || weaker == 0.0) return;
+  const bool drop_left = weak_left <= weak_right;
+  const Region& kept = drop_left ? left : right;    // the side whose wave is held back keeps its state
+  const Region& moved = drop_left ? right : left;
+  if (kept.material->pressure(kept.state.stretch) < min_pressure) return;  // it would part: solve in full
+  const RiemannSolution other = solve_wall(*moved.material, moved.state, drop_left ? Side::right : Side::left,
+                                           kept.state.rapidity, -kInf);
+  if (other.status != Status::ok || other.pressure < min_pressure) return;
+  (drop_left ? sol.left : sol.right) = kept.state;
+  (drop_left ? sol.right : sol.left) = other.left;
+  Node& node = nodes_[holder];
+  // The wave held back is missing on its side, and the re-solved wave on the other side is off
+  // by as much (a velocity matched instead of a pressure): both regions grow at their speeds.
+  node.defect_rate = weaker * (std::abs(characteristic_speed(*kept.material, kept.state, drop_left ? -1 : +1)) +
+                               std::abs(characteristic_speed(*moved.material, moved.state, drop_left ? +1 : -1)));
+  node.defect_since = t;
+  const int far_piece = node.kind == NodeKind::right_end ? nodes_[node.partner].piece : node.piece;
+  node.defect_cap = weaker * (piece_length(node.piece) + piece_length(far_piece));
+  ++suppressed_;
+}
+
+}  // namespace rigidity::characteristics

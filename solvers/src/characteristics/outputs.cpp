@@ -1,0 +1,101 @@
+// What the outputs read from the tracker: front segments, probe and snapshot samples, the energy books.
+#include "tracker.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "rigidity/errors.hpp"
+
+namespace rigidity::characteristics {
+
+void Tracker::record_segment(Node& n, double t) {
+  if (!want_fronts_) return;
+  if (t <= n.t0) return;  // nothing travelled
+  result_.fronts.push_back(FrontSegment{n.t0, n.x0, t, n.x_at(t), n.front_kind, n.family});
+}
+
+void Tracker::account_front_end(int id, double t) {
+  const Node& n = nodes_[id];
+  if (n.front_kind != FrontKind::shock || n.prev == kNone) return;
+  const Region& left = nodes_[n.prev].right;
+  const Region& right = n.right;
+  if (left.material == nullptr || right.material == nullptr) return;
+  // Energy removed per unit time at a front moving at m = dX/dt: m[E] − [F], with
+  // E the energy and F = p v its flux per unit label (SPEC §1).
+  const double jump_E = energy_density(*right.material, right.state) - energy_density(*left.material, left.state);
+  const double flux_right = right.material->pressure(right.state.stretch) * std::tanh(right.state.rapidity);
+  const double flux_left = left.material->pressure(left.state.stretch) * std::tanh(left.state.rapidity);
+  dissipated_ += (n.dXdt * jump_E - (flux_right - flux_left)) * (t - n.t0);
+}
+
+bool Tracker::locate(int body, double X, double t, Region& region, double& x) const {
+  for (int piece : order_) {
+    if (pieces_[piece].body != body) continue;
+    const Node& le = nodes_[pieces_[piece].left_end];
+    const Node& re = nodes_[pieces_[piece].right_end];
+    if (X < le.X_at(t) || X > re.X_at(t)) continue;
+    int n = pieces_[piece].left_end;
+    // The last node at or left of X (the region to its right holds X).
+    for (int next = nodes_[n].next; next != kNone && nodes_[next].kind != NodeKind::right_end &&
+                                    nodes_[next].X_at(t) <= X;
+         next = nodes_[n].next)
+      n = next;
+    const Node& node = nodes_[n];
+    region = node.right;
+    const double Xn = node.X_at(t);
+    x = node.x_at(t) + (X - Xn) * region.state.stretch.value() / std::cosh(region.state.rapidity);
+    return true;
+  }
+  return false;
+}
+
+double Tracker::quantity(Quantity q, const Region& r, double X, double x) const {
+  return quantity_value(q, *r.material, r.state, X, x);
+}
+
+void Tracker::sample(const SampleTime& st) {
+  const double t = st.t;
+  if (st.kind == 0) {
+    const ProbeDecl& probe = scene_.outputs.probes[st.index];
+    const int body = probe_body(scene_, probe);
+    Region r;
+    double x = 0.0;
+    if (!locate(body, probe.X, t, r, x)) return;
+    for (Quantity q : probe.quantities)
+      result_.probes.push_back(ProbeSample{t, st.index, q, quantity(q, r, probe.X, x)});
+    return;
+  }
+  const SnapshotDecl& snap = scene_.outputs.snapshots[st.index];
+  for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
+    const BodyDecl& body = scene_.bodies[b];
+    if (!snapshot_includes(snap, body)) continue;
+    const double l0 = body.natural_length();
+    for (int i = 0; i < snap.samples; ++i) {
+      const double X = l0 * i / (snap.samples - 1);
+      Region r;
+      double x = 0.0;
+      if (!locate(static_cast<int>(b), X, t, r, x)) continue;
+      for (Quantity q : snap.quantities)
+        result_.snapshots.push_back(SnapshotSample{t, static_cast<int>(b), X, q, quantity(q, r, X, x)});
+    }
+  }
+}
+
+void Tracker::totals(double t, double& energy, double& momentum) const {
+  energy = momentum = 0.0;
+  for (const Piece& piece : pieces_) {
+    if (piece.left_end == kNone) continue;  // rejoined into another piece
+    for (int n = piece.left_end; nodes_[n].kind != NodeKind::right_end; n = nodes_[n].next) {
+      const Node& node = nodes_[n];
+      const double dX = nodes_[node.next].X_at(t) - node.X_at(t);
+      energy += dX * energy_density(*node.right.material, node.right.state);
+      momentum += dX * momentum_density(*node.right.material, node.right.state);
+    }
+  }
+}
+
+}  // namespace rigidity::characteristics

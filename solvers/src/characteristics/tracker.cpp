@@ -1,0 +1,248 @@
+// Set-up of bodies and walls, and the main loop of the front tracker.
+#include "rigidity/solvers/characteristics.hpp"
+
+#include "tracker.hpp"
+
+#include <chrono>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "rigidity/errors.hpp"
+
+namespace rigidity::characteristics {
+
+void Tracker::build_bodies() {
+  for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
+    const BodyDecl& body = scene_.bodies[b];
+    const int piece = static_cast<int>(pieces_.size());
+    pieces_.push_back(Piece{static_cast<int>(b), kNone, kNone});
+    order_.push_back(piece);
+    double X = 0.0, x = body.position;
+    const int left = new_node(NodeKind::left_end, piece);
+    nodes_[left].front_kind = FrontKind::boundary;
+    nodes_[left].x0 = x;
+    int last = left;
+    for (std::size_t k = 0; k < body.segments.size(); ++k) {
+      const Segment& seg = body.segments[k];
+      const Region region{&scene_.material_of(seg), State{seg.rapidity, seg.stretch}};
+      if (k > 0) {
+        // An initial discontinuity: an interface between materials, else a
+        // stationary jump resolved at t = 0.
+        const bool interface = region.material != nodes_[last].right.material;
+        const int n = new_node(interface ? NodeKind::interface : NodeKind::front, piece);
+        nodes_[n].front_kind = interface ? FrontKind::interface : FrontKind::contact;
+        nodes_[n].X0 = X;
+        nodes_[n].x0 = x;
+        if (!interface) ++live_fronts_;
+        link(last, n);
+        last = n;
+      }
+      nodes_[last].right = region;
+      X += seg.length;
+      x += seg.length * seg.stretch.value() / std::cosh(seg.rapidity);
+    }
+    const int right = new_node(NodeKind::right_end, piece);
+    nodes_[right].front_kind = FrontKind::boundary;
+    nodes_[right].X0 = X;
+    nodes_[right].x0 = x;
+    link(last, right);
+    pieces_[piece].left_end = left;
+    pieces_[piece].right_end = right;
+    // End and interface nodes move with the material next to them.
+    for (int n = left; n != kNone; n = nodes_[n].next) {
+      if (nodes_[n].kind == NodeKind::front) continue;
+      const Region& r = nodes_[n].kind == NodeKind::right_end ? nodes_[nodes_[n].prev].right : nodes_[n].right;
+      nodes_[n].dxdt = std::tanh(r.state.rapidity);
+    }
+  }
+}
+
+void Tracker::build_walls() {
+  const BoundaryDecl* decls[2] = {&scene_.left, &scene_.right};
+  for (int side = 0; side < 2; ++side) {
+    const BoundaryDecl& d = *decls[side];
+    Wall& w = walls_[side];
+    w.present = d.type != BoundaryType::free;
+    if (!w.present) continue;
+    w.bonded = d.bonded;
+    w.x0 = d.position;
+    w.t0 = 0.0;
+    if (d.type == BoundaryType::piston) {
+      w.motion = d.piston;
+      w.rapidity = w.motion.rapidities.empty() ? 0.0 : w.motion.rapidities.front();
+    }
+  }
+}
+
+void Tracker::collect_sample_times() { samples_ = sample_times(scene_); }
+
+RunResult Tracker::run() {
+  const auto start = std::chrono::steady_clock::now();
+  build_bodies();
+  build_walls();
+  collect_sample_times();
+  result_.solver = "characteristics";
+  result_.solver_numbers = {{"tolerance", scene_.solver.tolerance}};
+  for (const BodyDecl& b : scene_.bodies) result_.body_names.push_back(b.name);
+  // The threshold of weak waves: each interface or contact holding back a wave weaker than
+  // `weak_` adds at most weak_ × (the speeds of the waves on its two sides, ~1) per unit time
+  // to the L1 error; over the time light takes to cross the bodies' natural length, for every
+  // such place, that is about half the tolerance's budget. The thresholds do not depend on
+  // time.end, so that the work per unit time does not either: a run much longer than that
+  // crossing time reports a bound that grows with it.
+  total_length_ = 0.0;
+  int places = 0;
+  for (const BodyDecl& b : scene_.bodies) {
+    total_length_ += b.natural_length();
+    for (std::size_t k = 1; k < b.segments.size(); ++k)
+      places += b.segments[k].material != b.segments[k - 1].material ? 1 : 0;
+  }
+  places += static_cast<int>(scene_.bodies.size()) - 1;
+  // Merges and the reflections of merging fronts come more often the finer the tolerance
+  // (as fan steps, their number grows as 1/tolerance): what each may cost falls as its square,
+  // so that their sum falls with the tolerance.
+  const double tolerance = scene_.solver.tolerance;
+  merge_base_ = merge_ = kMergeFraction * tolerance * tolerance * total_length_;
+  weak_merging_ = 0.5 * tolerance * tolerance;
+  front_cap_ = static_cast<double>(scene_.bodies.size()) *
+               std::max(kMinFrontsPerBody, kFrontsPerBody / scene_.solver.tolerance);
+  weak_ = 0.5 * scene_.solver.tolerance / std::max(1, places);
+  totals(0.0, result_.conservation.energy_initial, result_.conservation.momentum_initial);
+
+  // Contacts present at t = 0: walls at a body's end, bodies touching each other.
+  for (int side = 0; side < 2; ++side) {
+    Wall& w = walls_[side];
+    if (!w.present) continue;
+    const int end = side == 0 ? pieces_[order_.front()].left_end : pieces_[order_.back()].right_end;
+    if (touching(nodes_[end].x0, w.x0)) {
+      w.attached = end;
+      nodes_[end].attach = Attach::boundary;
+      nodes_[end].partner = side;
+    }
+    schedule_piston(side);
+  }
+  for (std::size_t i = 0; i + 1 < order_.size(); ++i) {
+    const int a = pieces_[order_[i]].right_end, b = pieces_[order_[i + 1]].left_end;
+    if (touching(nodes_[a].x0, nodes_[b].x0)) {
+      nodes_[a].attach = nodes_[b].attach = Attach::body;
+      nodes_[a].partner = b;
+      nodes_[b].partner = a;
+    }
+  }
+  // Resolve every initial discontinuity and end at t = 0, left to right.
+  for (int piece : order_)
+    for (int n = pieces_[piece].left_end; n != kNone; n = nodes_[n].next)
+      push(0.0, EventType::resolve, n, n, nodes_[n].version, 0);
+  for (std::size_t i = 0; i < pieces_.size(); ++i) schedule_gaps_around(static_cast<int>(i));
+
+  std::size_t next_sample = 0;
+  for (;;) {
+    while (!queue_.empty() && !valid(queue_.top())) queue_.pop();
+    meetings_.prune();
+    // The earliest of the next rare event and the next meeting (ties in the order scheduled).
+    const bool rare_first =
+        !queue_.empty() && (meetings_.empty() || queue_.top().t < meetings_.top().t ||
+                            (queue_.top().t == meetings_.top().t && queue_.top().seq < meetings_.top().seq));
+    const double t_event = rare_first ? queue_.top().t : meetings_.empty() ? kInf : meetings_.top().t;
+    const double t_sample = next_sample < samples_.size() ? samples_[next_sample].t : kInf;
+    if (t_sample < t_event) {
+      sample(samples_[next_sample++]);
+      continue;
+    }
+    if (t_event > scene_.t_end) break;
+    if (rare_first) {
+      const Event e = queue_.top();
+      queue_.pop();
+      handle(e);
+    } else {
+      const MeetingQueue::Entry m = meetings_.top();
+
+      meetings_.erase(m.node);
+      if (!interact_in_place(m.node, nodes_[m.node].next, m.t)) resolve(m.node, nodes_[m.node].next, m.t);
+    }
+  }
+  const double t_end = scene_.t_end;
+  for (; next_sample < samples_.size(); ++next_sample) sample(samples_[next_sample]);
+
+  // Close the books at t_end.
+  for (int side = 0; side < 2; ++side) flush_wall(side, t_end);
+  for (std::size_t id = 0; id < nodes_.size(); ++id) {
+    Node& n = nodes_[id];
+    if (!n.alive) continue;
+    if (n.kind == NodeKind::front) account_front_end(static_cast<int>(id), t_end);
+    record_segment(n, t_end);
+  }
+  double error_fans_alive = 0.0;
+  for (std::size_t id = 0; id < nodes_.size(); ++id) {
+    Node& n = nodes_[id];
+    if (!n.alive) continue;
+    close_defect(n, t_end);
+    if (n.kind == NodeKind::front && n.front_kind == FrontKind::rarefaction)
+      error_fans_alive += fan_error(static_cast<int>(id), t_end);
+  }
+  // Each error was measured when it was made; the evolution carries it on, and where waves
+  // cross a material interface or a changed region it grows (transmission and reflection
+  // together exceed the incoming strength for a wave entering a softer material). The bound
+  // takes that growth as a factor kStability, measured on the test suite's scenes (at most
+  // 1.4 there), not proven.
+  const double booked = error_defects_ + error_fans_ + error_fans_alive + error_merges_;
+  const double error_bound = kStability * booked / total_length_;
+  result_.solver_numbers.emplace_back("error_bound", error_bound);
+  result_.solver_numbers.emplace_back("weak_wave_threshold", weak_);
+  result_.solver_numbers.emplace_back("waves_held_back", static_cast<double>(suppressed_));
+  result_.solver_numbers.emplace_back("fronts_merged", static_cast<double>(merged_));
+  result_.solver_numbers.emplace_back("error_defects", error_defects_ / total_length_);
+  result_.solver_numbers.emplace_back("error_fans", (error_fans_ + error_fans_alive) / total_length_);
+  result_.solver_numbers.emplace_back("error_merges", error_merges_ / total_length_);
+  result_.solver_numbers.emplace_back("fronts_alive_max", static_cast<double>(live_fronts_max_));
+  Conservation& c = result_.conservation;
+  totals(t_end, c.energy_final, c.momentum_final);
+  c.wall_impulse = impulse_;
+  c.wall_work = wall_work_;
+  c.energy_dissipated = dissipated_;
+
+  // Bodies at t_end, pieces named name.1, name.2, ... left to right.
+  for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
+    std::vector<int> parts;
+    for (int piece : order_)
+      if (pieces_[piece].body == static_cast<int>(b)) parts.push_back(piece);
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      const Piece& piece = pieces_[parts[k]];
+      BodyResult r;
+      r.name = scene_.bodies[b].name + (parts.size() > 1 ? "." + std::to_string(k + 1) : "");
+      r.x_left = nodes_[piece.left_end].x_at(t_end);
+      r.x_right = nodes_[piece.right_end].x_at(t_end);
+      double mass = 0.0, mass_velocity = 0.0;
+      for (int n = piece.left_end; nodes_[n].kind != NodeKind::right_end; n = nodes_[n].next) {
+        const Node& node = nodes_[n];
+        const double dX = nodes_[node.next].X_at(t_end) - node.X_at(t_end);
+        const Material& m = *node.right.material;
+        mass += m.rest_density() * dX;
+        mass_velocity += m.rest_density() * dX * std::tanh(node.right.state.rapidity);
+        r.energy += dX * energy_density(m, node.right.state);
+        r.momentum += dX * momentum_density(m, node.right.state);
+      }
+      r.velocity_mean = mass > 0.0 ? mass_velocity / mass : 0.0;
+      result_.bodies.push_back(r);
+    }
+  }
+  if (fan_capped_) {
+    result_.warnings.push_back("rarefaction fans were split into at most " + std::to_string(kMaxFanSteps) +
+                               " steps: coarser than solver.tolerance = " + number(scene_.solver.tolerance));
+  }
+  result_.stats.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result_;
+}
+
+}  // namespace rigidity::characteristics
+
+namespace rigidity {
+
+RunResult solve_characteristics(const Scene& scene) { return characteristics::Tracker(scene).run(); }
+
+}  // namespace rigidity

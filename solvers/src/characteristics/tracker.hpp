@@ -1,0 +1,293 @@
+#pragma once
+// The front tracker's state: the nodes of each piece of body (fronts, interfaces, ends),
+// walls and pistons, the event queues, the error budget, and the class whose member
+// functions the files of this folder define, one responsibility each:
+//   tracker.cpp       set-up and the main loop (the cost model is written there)
+//   interactions.cpp  fronts meeting: in place, or by a full Riemann problem; waves held back
+//   coarsening.cpp    merging fronts and the error of fan steps
+//   boundaries.cpp    walls, pistons, gaps, contacts, cracks and the rare events
+//   outputs.cpp       samples, front segments, energy books
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <queue>
+#include <string>
+#include <vector>
+
+#include "front_math.hpp"
+#include "meeting_queue.hpp"
+#include "rigidity/run_result.hpp"
+#include "rigidity/scene.hpp"
+#include "rigidity/solvers/riemann.hpp"
+#include "rigidity/solvers/sampling.hpp"
+
+namespace rigidity::characteristics {
+
+constexpr int kNone = -1;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+/// Steps a single rarefaction fan may be split into; beyond it the fan is coarser
+/// than solver.tolerance and the run says so in its warnings.
+constexpr int kMaxFanSteps = 100000;
+/// A merge of two neighbouring fronts may cost at most this fraction of the tolerance's L1
+/// budget (tolerance × natural length of all bodies): thousands of merges fit in it.
+constexpr double kMergeFraction = 1.0;
+/// Live fronts per body beyond which merges may cost more (see Tracker::steer_merges):
+/// kFrontsPerBody / tolerance, at least kMinFrontsPerBody.
+constexpr double kFrontsPerBody = 0.5;
+constexpr double kMinFrontsPerBody = 100.0;
+/// The most a merge may cost, as a multiple of its cost while fronts are few.
+constexpr double kMergeCeiling = 1e4;
+/// Growth of an L1 error between the time it is made and t_end allowed for in the bound.
+constexpr double kStability = 2.0;
+/// How many fronts of the other family a merge of two fronts of one family may reach across.
+constexpr int kMergeReach = 8;
+
+enum class NodeKind : std::uint8_t { front, interface, left_end, right_end };
+/// What a body end touches.
+enum class Attach : std::uint8_t { free, boundary, body };
+
+struct Region {
+  const Material* material = nullptr;
+  State state;
+};
+
+/// A node of a piece's list: a front, a material interface or an end. Between
+/// interactions it moves on a straight line in both X and x.
+struct Node {
+  NodeKind kind = NodeKind::front;
+  FrontKind front_kind = FrontKind::contact;
+  int family = 0;
+  double t0 = 0.0, X0 = 0.0, x0 = 0.0;  ///< anchor: label and lab position at time t0
+  double dXdt = 0.0, dxdt = 0.0;
+  int prev = kNone, next = kNone;       ///< neighbours within the piece
+  Region right;                         ///< the state between this node and `next`
+  std::uint32_t version = 0;
+  bool alive = true;
+  Attach attach = Attach::free;         ///< end nodes only
+  int partner = kNone;                  ///< Attach::body: the touching end node; Attach::boundary: 0 left, 1 right
+  int piece = kNone;
+  double born = 0.0;                    ///< fronts: when the wave it carries was created (fan error grows from then)
+  /// Interfaces and contacts: a wave weaker than the threshold that this node did not emit
+  /// (its strength times its speed, the L1 error it adds per unit time), since when, and
+  /// the most it can add (strength times the natural length it could sweep).
+  double defect_rate = 0.0, defect_since = 0.0, defect_cap = 0.0;
+
+  [[nodiscard]] double X_at(double t) const { return X0 + dXdt * (t - t0); }
+  [[nodiscard]] double x_at(double t) const { return x0 + dxdt * (t - t0); }
+  [[nodiscard]] bool is_end() const { return kind == NodeKind::left_end || kind == NodeKind::right_end; }
+};
+
+/// A connected piece of a body (a body that cavitates becomes several pieces).
+struct Piece {
+  int body = 0;
+  int left_end = kNone, right_end = kNone;
+};
+
+/// A wall or piston. Its lab position is piecewise linear in time.
+struct Wall {
+  bool present = false;
+  bool bonded = false;
+  double t0 = 0.0, x0 = 0.0, rapidity = 0.0;
+  std::size_t segment = 0;               ///< index into motion of the velocity in force
+  PistonMotion motion;                   ///< empty for a fixed wall
+  int attached = kNone;                  ///< the end node touching it
+  std::uint32_t version = 0;
+  double pressure_since = 0.0;           ///< for the impulse: time the current contact pressure started
+  [[nodiscard]] double velocity() const { return std::tanh(rapidity); }
+  [[nodiscard]] double x_at(double t) const { return x0 + velocity() * (t - t0); }
+  [[nodiscard]] double next_change() const {
+    return segment + 1 < motion.times.size() ? motion.times[segment + 1] : kInf;
+  }
+};
+
+/// Events other than nodes meeting (those live in MeetingQueue).
+enum class EventType : std::uint8_t { resolve, gap, wall_gap, piston };
+
+struct Event {
+  double t;
+  std::uint64_t seq;
+  EventType type;
+  int a, b;               ///< nodes (b: wall side 0/1 for wall_gap; a: wall side for piston)
+  std::uint32_t va, vb;
+};
+
+struct EventLater {
+  bool operator()(const Event& x, const Event& y) const { return x.t != y.t ? x.t > y.t : x.seq > y.seq; }
+};
+
+/// One wave of a Riemann solution, as the states it passes through.
+struct WaveStates {
+  std::vector<State> states;  ///< outer state first, star state last
+  bool shock = false;
+};
+
+class Tracker {
+ public:
+  explicit Tracker(const Scene& scene) : scene_(scene) {
+    want_fronts_ = scene.outputs.fronts;
+    fan_step_ = scene.solver.tolerance;
+  }
+
+  RunResult run();
+
+ private:
+  // ---- set-up -------------------------------------------------------------------
+  void build_bodies();
+  void build_walls();
+  void collect_sample_times();
+
+  // ---- node list ------------------------------------------------------------------
+  int new_node(NodeKind kind, int piece) {
+    int id;
+    if (!free_nodes_.empty()) {
+      id = free_nodes_.back();
+      free_nodes_.pop_back();
+      const std::uint32_t version = nodes_[id].version + 1;
+      nodes_[id] = Node{};
+      nodes_[id].version = version;
+    } else {
+      id = static_cast<int>(nodes_.size());
+      nodes_.emplace_back();
+    }
+    nodes_[id].kind = kind;
+    nodes_[id].piece = piece;
+    return id;
+  }
+  /// Removes a node from the pool; a front's energy books must be closed first
+  /// (account_front_end), while its neighbours are still its own.
+  void kill_node(int id, double t) {
+    Node& n = nodes_[id];
+    if (n.kind == NodeKind::front) --live_fronts_;
+    close_defect(n, t);
+    record_segment(n, t);
+    meetings_.erase(id);
+    n.alive = false;
+    ++n.version;
+    free_nodes_.push_back(id);
+  }
+  void link(int a, int b) {
+    if (a != kNone) nodes_[a].next = b;
+    if (b != kNone) nodes_[b].prev = a;
+  }
+
+  // ---- events -----------------------------------------------------------------------
+  void push(double t, EventType type, int a, int b, std::uint32_t va, std::uint32_t vb) {
+    queue_.push(Event{t, seq_++, type, a, b, va, vb});
+  }
+  bool valid(const Event& e) const;
+  void schedule_meet(int a);
+  void schedule_gaps_around(int piece);
+  void schedule_gap(int left_piece, int right_piece);
+  void schedule_wall_gap(int side);
+  void schedule_piston(int side);
+
+  // ---- interactions -------------------------------------------------------------------
+  void handle(const Event& e);
+  void resolve(int seed_left, int seed_right, double t);
+  bool rejoin(int right_end, int left_end, double t, double x);
+  bool interact_in_place(int a, int b, double t);
+  int merge_neighbours(int id, double t);
+  bool merge_across(int p, int q, double t);
+  void merge_nearby(int id, double t);
+  struct MergeSegment {
+    double a, b;             ///< label extent at the time of the merge
+    State old;               ///< its state now
+    double j_old;            ///< its f-invariant now
+    State left, right;       ///< its state if left of the merged front, if right of it
+    int right_node;          ///< the node at its right edge that stays (kNone: p or q)
+  };
+  std::vector<MergeSegment> segments_;
+  double merge_cost(int p, int q, double t, double* X_merged) const;
+  void set_front(int id, int family, FrontKind kind, const Material& m, const State& left, const State& right,
+                 double t, double X, double x, double off_hugoniot, double born);
+  void resolve_group(std::vector<int>& group, double t);
+  void wave(const Material& m, const State& outer, const State& star, int family, WaveStates& w);
+  void emit_fronts(const Material& m, const WaveStates& w, int family, int piece, double t, double X, double x,
+                   std::vector<int>& out);
+  void reanchor(int id, double t);
+  void split_piece(int left_node, int right_node, const State& left_state, const State& right_state,
+                   const Region& left_region, const Region& right_region, double t, double X, double x);
+  void set_attach(int end, Attach attach, int partner, double t);
+  void flush_wall(int side, double t);
+  // ---- outputs --------------------------------------------------------------------------
+  void record_segment(Node& n, double t);
+  void account_front_end(int id, double t);
+  void sample(const SampleTime& st);
+  /// The region at label X of `body` at time t, with the lab position of X.
+  bool locate(int body, double X, double t, Region& region, double& x) const;
+  double quantity(Quantity q, const Region& r, double X, double x) const;
+  void totals(double t, double& energy, double& momentum) const;
+  void event(double t, const char* kind, double x, std::vector<std::string> bodies) {
+    result_.events.push_back(RunEvent{t, kind, x, std::move(bodies)});
+  }
+  std::string piece_body_name(int piece) const { return scene_.bodies[pieces_[piece].body].name; }
+
+  const Scene& scene_;
+  bool want_fronts_ = false;
+  double fan_step_ = 1e-12;
+  bool fan_capped_ = false;
+  // ---- the error budget (see README "What the tolerance means") --------------------
+  double weak_ = 0.0;               ///< strength |ΔJ| below which an interface or contact emits no wave
+  double weak_merging_ = 0.0;       ///< strength below which two fronts of one family merging emit no reflection
+  double total_length_ = 1.0;       ///< natural length of all bodies: the error bound is per unit of it
+  double error_defects_ = 0.0;      ///< L1 error of waves held back at interfaces and contacts
+  double error_fans_ = 0.0;         ///< L1 error of fan steps whose fans are gone
+  long suppressed_ = 0;             ///< weak waves held back
+  double merge_base_ = 0.0;         ///< largest L1 error (strength × distance) of a merge while fronts are few
+  double merge_ = 0.0;              ///< the same now: raised while the live fronts exceed front_cap_
+  double front_cap_ = 0.0;
+  /// A solution that grows rough (a pulse scattered by many contacts into more and more
+  /// waves) cannot be held to a fixed L1 error by a bounded number of fronts. Work is bounded
+  /// first: while more fronts live than front_cap_, the cost a merge may have grows by 1 %
+  /// per interaction, and falls back towards merge_base_ once they are half as many. The
+  /// bound reports what it cost.
+  void steer_merges() {
+    if (static_cast<double>(live_fronts_) > front_cap_) {
+      merge_ = std::min(merge_ * 1.01, kMergeCeiling * merge_base_);
+    } else if (merge_ > merge_base_ && static_cast<double>(live_fronts_) < 0.5 * front_cap_) {
+      merge_ = std::max(merge_base_, merge_ / 1.01);
+    }
+  }
+  double error_merges_ = 0.0;       ///< L1 error of fronts merged
+  long merged_ = 0;
+  long live_fronts_max_ = 0;
+
+  void close_defect(Node& n, double t) {
+    if (n.defect_rate <= 0.0) return;
+    error_defects_ += std::min(n.defect_rate * (t - n.defect_since), n.defect_cap);
+    n.defect_rate = 0.0;
+  }
+  /// The L1 error of a rarefaction step at time t: the exact fan spreads the step's jump σ
+  /// over |Δλ| (t − born) in X (no more than the piece), which a jump in its middle misses
+  /// by σ/4 of that width on average.
+  double fan_error(int id, double t) const;
+  double piece_length(int piece) const {
+    return nodes_[pieces_[piece].right_end].X0 - nodes_[pieces_[piece].left_end].X0;  // ends move with the material
+  }
+  void hold_back_weak_wave(RiemannSolution& sol, const Region& left, const Region& right, int holder,
+                           double min_pressure, double t);
+
+  std::vector<Node> nodes_;
+  std::vector<int> free_nodes_;
+  std::vector<Piece> pieces_;
+  std::vector<int> order_;  ///< pieces in lab order, left to right
+  Wall walls_[2];
+  std::priority_queue<Event, std::vector<Event>, EventLater> queue_;  ///< rare events: gaps, pistons, t = 0
+  MeetingQueue meetings_;                                              ///< fronts meeting fronts, ends, interfaces
+  std::uint64_t seq_ = 0;
+  long live_fronts_ = 0;
+
+  std::vector<SampleTime> samples_;
+  RunResult result_;
+  double impulse_ = 0.0, wall_work_ = 0.0, dissipated_ = 0.0;
+  double last_interaction_t_ = -1.0;
+  long interactions_at_this_t_ = 0;
+
+  // scratch buffers reused by every interaction
+  std::vector<int> group_, emitted_left_, emitted_right_, touched_;
+  WaveStates wave_left_, wave_right_;
+};
+
+}  // namespace rigidity::characteristics
