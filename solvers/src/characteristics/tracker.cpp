@@ -139,6 +139,16 @@ RunResult Tracker::run() {
       push(0.0, EventType::resolve, n, n, nodes_[n].version, 0);
   for (std::size_t i = 0; i < pieces_.size(); ++i) schedule_gaps_around(static_cast<int>(i));
 
+  // The cost model. Each pass of the loop takes the earliest event: a meeting of two
+  // neighbouring nodes (the heap holds one current entry per node, and stale ones at most a
+  // few times as many), a gap closing, a piston changing speed, or a sample. An interaction
+  // emits at most one front per family, except a fan, split into steps of Ψ between one and
+  // two tolerances wide; it removes those it resolves. Live fronts are bounded by the cap
+  // front_cap_ = bodies × max(100, 0.5/tolerance) (merges grow costlier while it is
+  // exceeded), so a crossing of the bodies by the waves costs at most about front_cap_²/4
+  // interactions and the interactions grow linearly with time.end. Fans alone need about
+  // (their span in Ψ)/tolerance steps: a genuinely nonlinear body costs ~1/tolerance² per
+  // crossing.
   std::size_t next_sample = 0;
   for (;;) {
     while (!queue_.empty() && !valid(queue_.top())) queue_.pop();

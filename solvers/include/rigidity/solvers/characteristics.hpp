@@ -1,5 +1,5 @@
 #pragma once
-/// The method of characteristics as exact front tracking in Lagrangian coordinates.
+/// The method of characteristics as front tracking in Lagrangian coordinates.
 ///
 /// The state is piecewise constant between fronts; every front carries its exact
 /// speed. Fronts, body ends and material interfaces are nodes of a list per piece of
@@ -8,7 +8,10 @@
 /// which emits the outgoing fronts. For linearly degenerate materials (rigid, hooke,
 /// rigid_fluid) each interaction emits at most one front per family and the result
 /// is exact to round-off; rarefaction fans of genuinely nonlinear materials are
-/// split into steps of Ψ no larger than solver.tolerance.
+/// split into steps of Ψ of about solver.tolerance. solver.tolerance also bounds the
+/// work: waves weaker than it allows are held back at contacts, neighbouring fronts
+/// merge, and the live fronts are capped; the run reports the L1 error bound this
+/// costs (solver.error_bound, README "What the tolerance means").
 
 #include "rigidity/run_result.hpp"
 #include "rigidity/scene.hpp"
