@@ -60,6 +60,7 @@ int Tracker::merge_neighbours(int id, double t) {
       if (np.kind != NodeKind::front || nq.kind != NodeKind::front || np.family != nq.family) continue;
       const Region& L = nodes_[np.prev].right;
       if (L.material != np.right.material || L.material != nq.right.material) continue;
+      if (std::min(np.strength, nq.strength) * (nq.X_at(t) - np.X_at(t)) > best_cost) continue;
       const double cost = merge_cost(p, q, t, nullptr);
       if (cost <= best_cost) {
         best_cost = cost;
@@ -109,7 +110,8 @@ int Tracker::merge_neighbours(int id, double t) {
     link(nodes_[gone].prev, nodes_[gone].next);
     if (kept == q) nodes_[q].right = R;
     kill_node(gone, t);
-    set_front(kept, family, kind, m, L.state, R.state, t, X, x, off, t);
+    set_front(kept, family, kind, m, L.state, R.state, t, X, x, off, t,
+              std::abs(wave_strength(m, L.state, R.state, family)));
     if (nodes_[kept].prev != kNone) schedule_meet(nodes_[kept].prev);
     schedule_meet(kept);
     id = kept;
@@ -132,6 +134,8 @@ bool Tracker::merge_across(int p, int q, double t) {
   const int f = nodes_[p].family;
   const int left_of_p = nodes_[p].prev, right_of_q = nodes_[q].next;
   if (left_of_p == kNone || right_of_q == kNone) return false;
+  // No merge costs less than the weaker front times the distance: most are refused here.
+  if (std::min(nodes_[p].strength, nodes_[q].strength) * (nodes_[q].X_at(t) - nodes_[p].X_at(t)) > merge_) return false;
   const auto invariant = [&](const State& st, int family) { return st.rapidity + family * m.riemann_psi(st.stretch); };
   const State before = nodes_[left_of_p].right.state;
   const State after_q = nodes_[q].right.state;
@@ -214,6 +218,7 @@ bool Tracker::merge_across(int p, int q, double t) {
   mn.family = f;
   mn.front_kind = FrontKind::contact;
   mn.born = t;
+  mn.strength = std::abs(j_after_q - j_before);
   int cursor = start;
   const auto advance = [&](double X, const State& st) {
     x_cursor += (X - X_cursor) * label_density(st);

@@ -57,8 +57,9 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   if (before.X_at(t) >= X - tolerance || after.X_at(t) <= X + tolerance) return false;  // a crowd: resolve in full
   const State& left = before.right.state;
   const State& right = nb.right.state;
-  const double j_plus = left.rapidity + m->riemann_psi(left.stretch);
-  const double j_minus = right.rapidity - m->riemann_psi(right.stretch);
+  const double psi_left = m->riemann_psi(left.stretch), psi_right = m->riemann_psi(right.stretch);
+  const double j_plus = left.rapidity + psi_left;
+  const double j_minus = right.rapidity - psi_right;
   const double psi_star = 0.5 * (j_plus - j_minus);
   if (!(psi_star < m->psi_max())) return false;
   if (m->cavitation_pressure() > -kInf) {
@@ -135,7 +136,8 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     account_front_end(a, t);  // its shock books close while its neighbours are still its own
     link(keep_before, b);
     kill_node(a, t);
-    set_front(b, +1, kinds[1], *m, left, right, t, X, x, off_hugoniot[1], born[1]);
+    set_front(b, +1, kinds[1], *m, left, right, t, X, x, off_hugoniot[1], born[1],
+              std::abs(wave_strength(*m, left, right, +1)));
     schedule_meet(keep_before);
     schedule_meet(b);
     return true;
@@ -143,8 +145,14 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   account_front_end(a, t);
   account_front_end(b, t);
   result_.stats.fronts += 2;
-  set_front(a, -1, kinds[0], *m, left, star, t, X, x, off_hugoniot[0], born[0]);
-  set_front(b, +1, kinds[1], *m, star, right, t, X, x, off_hugoniot[1], born[1]);
+  // The strengths: J− across the C− front, J+ across the C+ front (for a linearly
+  // degenerate material, those the fronts brought in, passed on).
+  const double strength_minus = degenerate ? std::abs(j_minus - (left.rapidity - psi_left))
+                                           : std::abs(wave_strength(*m, left, star, -1));
+  const double strength_plus = degenerate ? std::abs(right.rapidity + psi_right - j_plus)
+                                          : std::abs(wave_strength(*m, star, right, +1));
+  set_front(a, -1, kinds[0], *m, left, star, t, X, x, off_hugoniot[0], born[0], strength_minus);
+  set_front(b, +1, kinds[1], *m, star, right, t, X, x, off_hugoniot[1], born[1], strength_plus);
   na.right.state = star;
   schedule_meet(na.prev);
   schedule_meet(a);
@@ -164,8 +172,9 @@ bool Tracker::interact_in_place(int a, int b, double t) {
 /// speed; shocks and fan steps at the speed the label jump condition gives, so that the lab
 /// position of every label stays continuous across them.
 void Tracker::set_front(int id, int family, FrontKind kind, const Material& m, const State& left, const State& right,
-                        double t, double X, double x, double off_hugoniot, double born) {
+                        double t, double X, double x, double off_hugoniot, double born, double strength) {
   Node& n = nodes_[id];
+  n.strength = strength;
   const FrontSpeeds speeds = kind == FrontKind::contact ? characteristic_speeds(m, right, family)
                                                         : label_jump_speeds(m, left, right, family);
   n.born = born;
@@ -272,6 +281,7 @@ void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, in
     n.X0 = X;
     n.x0 = x;
     n.born = t;
+    n.strength = std::abs(wave_strength(m, outer, inner, family));
     if (w.shock) {
       n.front_kind = FrontKind::shock;
       const FrontSpeeds sp = family < 0 ? label_jump_speeds(m, outer, inner, family)

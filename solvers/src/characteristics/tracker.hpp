@@ -69,6 +69,7 @@ struct Node {
   int partner = kNone;                  ///< Attach::body: the touching end node; Attach::boundary: 0 left, 1 right
   int piece = kNone;
   double born = 0.0;                    ///< fronts: when the wave it carries was created (fan error grows from then)
+  double strength = 0.0;                ///< fronts: |jump of the family's own invariant| (J+ for C+, J− for C−)
   /// Interfaces and contacts: a wave weaker than the threshold that this node did not emit
   /// (its strength times its speed, the L1 error it adds per unit time), since when, and
   /// the most it can add (strength times the natural length it could sweep).
@@ -201,7 +202,7 @@ class Tracker {
   std::vector<MergeSegment> segments_;
   double merge_cost(int p, int q, double t, double* X_merged) const;
   void set_front(int id, int family, FrontKind kind, const Material& m, const State& left, const State& right,
-                 double t, double X, double x, double off_hugoniot, double born);
+                 double t, double X, double x, double off_hugoniot, double born, double strength);
   void resolve_group(std::vector<int>& group, double t);
   void wave(const Material& m, const State& outer, const State& star, int family, WaveStates& w);
   void emit_fronts(const Material& m, const WaveStates& w, int family, int piece, double t, double X, double x,
