@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "rigidity/errors.hpp"
+#include "rigidity/run_recorder.hpp"
+#include "rigidity/solvers/budget.hpp"
 #include "rigidity/solvers/riemann.hpp"
 #include "rigidity/solvers/sampling.hpp"
 
@@ -197,7 +199,7 @@ std::string number(double v) {
 
 class Tracker {
  public:
-  explicit Tracker(const Scene& scene) : scene_(scene) {
+  Tracker(const Scene& scene, RunRecorder& recorder) : scene_(scene), recorder_(recorder) {
     want_fronts_ = scene.outputs.fronts;
     fan_step_ = scene.solver.tolerance;
   }
@@ -277,11 +279,12 @@ class Tracker {
   double quantity(Quantity q, const Region& r, double X, double x) const;
   void totals(double t, double& energy, double& momentum) const;
   void event(double t, const char* kind, double x, std::vector<std::string> bodies) {
-    result_.events.push_back(RunEvent{t, kind, x, std::move(bodies)});
+    recorder_.event(RunEvent{t, kind, x, std::move(bodies)});
   }
   std::string piece_body_name(int piece) const { return scene_.bodies[pieces_[piece].body].name; }
 
   const Scene& scene_;
+  RunRecorder& recorder_;  ///< fronts, samples and events go there as they are produced
   bool want_fronts_ = false;
   double fan_step_ = 1e-12;
   bool fan_capped_ = false;
@@ -702,9 +705,7 @@ void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, in
     ++result_.stats.fronts;
   }
   if (live_fronts_ > scene_.solver.max_fronts) {
-    throw NumericalError("more than solver.max_fronts = " + std::to_string(scene_.solver.max_fronts) +
-                         " live fronts at t = " + number(t) +
-                         "; raise solver.tolerance (coarser fans) or solver.max_fronts");
+    recorder_.stop(budget_stop_reason(scene_, Budget::fronts, t));  // the run stops after this interaction
   }
 }
 
@@ -785,10 +786,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
                          " (a material not convex in the sense the Riemann solver assumes?)");
   }
   if (++result_.stats.interactions > scene_.solver.max_interactions) {
-    throw NumericalError("more than solver.max_interactions = " + std::to_string(scene_.solver.max_interactions) +
-                         " interactions by t = " + number(t) + " (of t_end = " + number(scene_.t_end) +
-                         "); the bodies keep fragmenting or colliding: shorten time.end, coarsen solver.tolerance"
-                         " or raise solver.max_interactions");
+    recorder_.stop(budget_stop_reason(scene_, Budget::interactions, t));  // the run stops after this interaction
   }
   const int first = group.front(), last = group.back();
   const Node& nf = nodes_[first];
@@ -1020,7 +1018,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
 void Tracker::record_segment(Node& n, double t) {
   if (!want_fronts_) return;
   if (t <= n.t0) return;  // nothing travelled
-  result_.fronts.push_back(FrontSegment{n.t0, n.x0, t, n.x_at(t), n.front_kind, n.family});
+  recorder_.front(FrontSegment{n.t0, n.x0, t, n.x_at(t), n.front_kind, n.family});
 }
 
 void Tracker::account_front_end(int id, double t) {
@@ -1071,7 +1069,7 @@ void Tracker::sample(const SampleTime& st) {
     double x = 0.0;
     if (!locate(body, probe.X, t, r, x)) return;
     for (Quantity q : probe.quantities)
-      result_.probes.push_back(ProbeSample{t, st.index, q, quantity(q, r, probe.X, x)});
+      recorder_.probe(ProbeSample{t, st.index, q, quantity(q, r, probe.X, x)});
     return;
   }
   const SnapshotDecl& snap = scene_.outputs.snapshots[st.index];
@@ -1085,7 +1083,7 @@ void Tracker::sample(const SampleTime& st) {
       double x = 0.0;
       if (!locate(static_cast<int>(b), X, t, r, x)) continue;
       for (Quantity q : snap.quantities)
-        result_.snapshots.push_back(SnapshotSample{t, static_cast<int>(b), X, q, quantity(q, r, X, x)});
+        recorder_.snapshot(SnapshotSample{t, static_cast<int>(b), X, q, quantity(q, r, X, x)});
     }
   }
 }
@@ -1153,6 +1151,7 @@ RunResult Tracker::run() {
       continue;
     }
     if (t_event > scene_.t_end) break;
+    if (recorder_.poll(t_event, live_fronts_, result_.stats.interactions)) break;  // a budget, Ctrl-C; progress
     if (rare_first) {
       const Event e = queue_.top();
       queue_.pop();
@@ -1163,8 +1162,8 @@ RunResult Tracker::run() {
       if (!cross_in_place(m.node, nodes_[m.node].next, m.t)) resolve(m.node, nodes_[m.node].next, m.t);
     }
   }
-  const double t_end = scene_.t_end;
-  for (; next_sample < samples_.size(); ++next_sample) sample(samples_[next_sample]);
+  const double t_end = recorder_.stopped() ? recorder_.t_reached() : scene_.t_end;
+  for (; next_sample < samples_.size() && !recorder_.stopped(); ++next_sample) sample(samples_[next_sample]);
 
   // Close the books at t_end.
   for (int side = 0; side < 2; ++side) flush_wall(side, t_end);
@@ -1216,6 +1215,15 @@ RunResult Tracker::run() {
 
 }  // namespace
 
-RunResult solve_characteristics(const Scene& scene) { return Tracker(scene).run(); }
+RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
+  RunResult result = Tracker(scene, recorder).run();
+  recorder.complete(result, scene.t_end);
+  return result;
+}
+
+RunResult solve_characteristics(const Scene& scene) {
+  MemoryRecorder recorder;
+  return solve_characteristics(scene, recorder);
+}
 
 }  // namespace rigidity
