@@ -37,6 +37,10 @@ void run_ringing_bar(benchmark::State& state, const char* material) {
   long fronts = 0;
   for (auto _ : state) {
     const rigidity::RunResult r = rigidity::solve(scene);
+    if (r.status != "ok") {
+      state.SkipWithError(("the run stopped early: " + r.stop_reason).c_str());
+      break;
+    }
     interactions += r.stats.interactions;
     fronts = r.stats.fronts;
     benchmark::DoNotOptimize(r.conservation.energy_final);

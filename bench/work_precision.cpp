@@ -264,12 +264,19 @@ std::map<std::pair<double, int>, BodySamples> collect(const rigidity::RunResult&
   return out;
 }
 
+/// A run that reached t_end; one stopped by a budget is a failed configuration.
+rigidity::RunResult solve_to_the_end(const rigidity::Scene& scene) {
+  rigidity::RunResult r = rigidity::solve(scene);
+  if (r.status != "ok") throw rigidity::NumericalError(r.stop_reason);
+  return r;
+}
+
 /// Finite volume: cells of width l0/cells, each valued by the sample at its centre.
 double finite_volume_error(const SceneDef& def, Config& c) {
   const int samples = 2 * c.cells + 1;
   const rigidity::Scene scene = rigidity::load_scene_string(
       def.yaml(c.solver_block(), def.times.back(), snapshot_block(def.times, "s", samples, false)), "<wp>");
-  const rigidity::RunResult r = rigidity::solve(scene);
+  const rigidity::RunResult r = solve_to_the_end(scene);
   c.probe_time_s = r.stats.wall_time_s;
   const auto by_body = collect(r);
   double worst = 0.0;
@@ -300,7 +307,7 @@ double characteristics_error(const SceneDef& def, Config& c) {
     for (int samples = 4001;; samples = 4 * (samples - 1) + 1) {
       const rigidity::Scene scene = rigidity::load_scene_string(
           def.yaml(c.solver_block(), t, snapshot_block({t}, "x, s, gamma", samples, true)), "<wp>");
-      const rigidity::RunResult r = rigidity::solve(scene);
+      const rigidity::RunResult r = solve_to_the_end(scene);
       c.probe_time_s = std::max(c.probe_time_s, r.stats.wall_time_s);
       for (const std::string& w : r.warnings)
         if (c.note.find(w) == std::string::npos) c.note += (c.note.empty() ? "" : "; ") + w;

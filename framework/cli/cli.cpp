@@ -26,18 +26,27 @@ struct Command {
 };
 
 constexpr Command kCommands[] = {
-    {"run", "rigidity run [SCENE.yaml] [--out DIR] [--set key.path=value ...]",
+    {"run", "rigidity run [SCENE.yaml] [--out DIR] [--set key.path=value ...] [--quiet]",
      "evolve a scene and write its outputs (no SCENE: the paper's wall impact)",
      "Loads and validates SCENE (the embedded paper_wall_impact scene if none is given),\n"
-     "evolves it to its end time and writes summary.json, the CSV files its outputs ask\n"
-     "for and resolved_scene.yaml into DIR, then prints a short summary. For the default\n"
-     "scene it also compares what it found with the paper's closed forms.\n"
+     "evolves it to its end time and writes summary.json, events.csv, the CSV files its\n"
+     "outputs ask for and resolved_scene.yaml into DIR, then prints a short summary. For\n"
+     "the default scene it also compares what it found with the paper's closed forms.\n"
+     "The CSV files are written as the run goes, into a temporary directory renamed to\n"
+     "DIR at the end: a run that fails leaves nothing behind.\n"
+     "\n"
+     "A run that takes more than a second shows a progress line on stderr when stderr is\n"
+     "a terminal. Ctrl-C stops it cleanly: the outputs up to the time reached are written,\n"
+     "with status 'interrupted' (exit 130). A run that reaches solver.max_fronts or\n"
+     "solver.max_interactions stops the same way with status 'stopped' (exit 1), and says\n"
+     "what to change.\n"
      "\n"
      "options:\n"
      "  --out DIR              output directory (default out/<scene name>); an earlier run\n"
      "                         there is replaced as a whole\n"
      "  --set key.path=value   override a scene value before validation, e.g.\n"
-     "                         --set bodies.0.velocity=0.8 (repeatable)\n",
+     "                         --set bodies.0.velocity=0.8 (repeatable)\n"
+     "  --quiet                print nothing but errors (no summary, warnings or progress)\n",
      run_command},
     {"validate", "rigidity validate SCENE.yaml [--set key.path=value ...]", "check a scene file without running it",
      "Loads SCENE with every rule of the scene schema and reports the first error as\n"
@@ -105,8 +114,9 @@ const Command* find_command(std::string_view name) {
 }
 
 constexpr std::string_view kExitStatus =
-    "exit status: 0 done, 1 internal failure, 2 invalid input,\n"
-    "             3 valid scene without a classical solution (physically inadmissible)\n";
+    "exit status: 0 done, 1 internal failure or a run stopped by a budget, 2 invalid input,\n"
+    "             3 valid scene without a classical solution (physically inadmissible),\n"
+    "             130 a run interrupted by Ctrl-C (its outputs up to then are written)\n";
 
 }  // namespace
 

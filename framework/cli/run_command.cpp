@@ -1,9 +1,16 @@
-// rigidity run [SCENE.yaml]: load, solve, write the outputs, and say in a few lines
-// what happened; for the default scene, also what it found against the paper.
+// rigidity run [SCENE.yaml]: load, solve while the outputs stream to disk, and say
+// in a few lines what happened; for the default scene, also what it found against
+// the paper. A long run shows a progress line on a terminal; Ctrl-C stops it cleanly.
+#include <sys/ioctl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <iostream>
 #include <optional>
 #include <ostream>
 
@@ -71,11 +78,19 @@ std::string join(const std::vector<std::string>& items, std::string_view separat
   return out;
 }
 
+/// Events the terminal summary lists one by one (summary.json has more, events.csv all).
+constexpr std::size_t kEventsShown = 20;
+
 void print_summary(std::ostream& out, const Scene& scene, const RunResult& result, const std::string& dir) {
   const SceneUnits units(scene.units);
-  out << scene.name << " (" << scene.source << "): " << result.status
-      << " at t_end = " << units(scene.t_end, Dimension::time) << " " << unit_symbol(Dimension::time, scene.units)
-      << "\n";
+  const std::string time_unit(unit_symbol(Dimension::time, scene.units));
+  out << scene.name << " (" << scene.source << "): " << result.status;
+  if (result.status == to_string(RunStatus::ok)) {
+    out << " at t_end = " << units(scene.t_end, Dimension::time) << " " << time_unit << "\n";
+  } else {
+    out << " at t = " << units(result.t_reached, Dimension::time) << " " << time_unit
+        << " of t_end = " << units(scene.t_end, Dimension::time) << " " << time_unit << "\n";
+  }
 
   std::vector<std::string> numbers;
   for (const auto& [name, value] : result.solver_numbers) numbers.push_back(name + " " + number(value, 6));
@@ -84,17 +99,27 @@ void print_summary(std::ostream& out, const Scene& scene, const RunResult& resul
       << result.stats.fronts << " fronts, " << result.stats.interactions << " interactions, solved in "
       << number(result.stats.wall_time_s, 3) << " s\n";
 
+  long total_events = 0;
+  std::vector<std::string> counts;
+  for (const auto& [kind, count] : result.event_counts) {
+    total_events += count;
+    counts.push_back(std::to_string(count) + " " + kind);
+  }
   if (result.events.empty()) {
     out << "events: none\n";
   } else {
     out << "events:\n";
     Table events({units.label("t", Dimension::time), "kind", units.label("x", Dimension::length), "bodies"});
-    for (const RunEvent& e : result.events)
+    for (std::size_t i = 0; i < std::min(result.events.size(), kEventsShown); ++i) {
+      const RunEvent& e = result.events[i];
       events.add({units(e.t, Dimension::time), e.kind, units(e.x, Dimension::length), join(e.bodies, ", ")});
+    }
     events.print(out);
+    if (total_events > static_cast<long>(kEventsShown))
+      out << "  ... " << total_events << " events in all (" << join(counts, ", ") << "), every one in events.csv\n";
   }
 
-  out << "bodies at t_end:\n";
+  out << (result.status == to_string(RunStatus::ok) ? "bodies at t_end:\n" : "bodies at the time reached:\n");
   Table bodies({"name", units.label("x_left", Dimension::length), units.label("x_right", Dimension::length),
                 units.label("velocity_mean", Dimension::velocity),
                 units.label("momentum", Dimension::momentum_per_area),
@@ -125,9 +150,7 @@ void print_summary(std::ostream& out, const Scene& scene, const RunResult& resul
                momentum_scale > 0.0 ? number(std::abs(momentum_residual) / momentum_scale, 2) : "-"});
   balance.print(out);
 
-  for (const std::string& warning : result.warnings) out << "warning: " << warning << "\n";
-
-  std::vector<std::string> files{"summary.json"};
+  std::vector<std::string> files{"summary.json", "events.csv"};
   if (!scene.outputs.probes.empty()) files.emplace_back("probes.csv");
   if (!scene.outputs.snapshots.empty()) files.emplace_back("snapshots.csv");
   if (scene.outputs.fronts) files.emplace_back("fronts.csv");
@@ -166,7 +189,13 @@ std::string relative_difference(double paper, std::optional<double> found) {
   return number(paper != 0.0 ? difference / std::abs(paper) : difference, 2);
 }
 
-void print_paper_comparison(std::ostream& out, const Scene& scene, const RunResult& result) {
+/// The extremes of the paper's quantities at the 'wall' probe, kept as the samples stream past.
+struct WallProbeExtremes {
+  std::optional<double> p_max, s_min;
+};
+
+void print_paper_comparison(std::ostream& out, const Scene& scene, const RunResult& result,
+                            const WallProbeExtremes& wall_probe) {
   out << "\nagainst the paper (Brotas & Fernandes, physics/0307019, §3; natural units, c = 1):\n";
   if (const std::string why_not = paper_setting_violation(scene); !why_not.empty()) {
     out << "  no comparison: " << why_not << "\n";
@@ -187,15 +216,7 @@ void print_paper_comparison(std::ostream& out, const Scene& scene, const RunResu
   const double rebound_paper = -v;
 
   // What rigidity found: the extremes of the wall probe, the separation event, the bar at t_end.
-  std::optional<double> p_max, s_min;
-  const auto& probes = scene.outputs.probes;
-  const auto wall = std::find_if(probes.begin(), probes.end(), [](const ProbeDecl& p) { return p.name == "wall"; });
-  const int wall_index = static_cast<int>(wall - probes.begin());
-  for (const ProbeSample& sample : result.probes) {
-    if (sample.probe != wall_index) continue;
-    if (sample.quantity == Quantity::p) p_max = std::max(p_max.value_or(sample.value), sample.value);
-    if (sample.quantity == Quantity::s) s_min = std::min(s_min.value_or(sample.value), sample.value);
-  }
+  const std::optional<double> p_max = wall_probe.p_max, s_min = wall_probe.s_min;
   const auto involves_bar = [&](const RunEvent& e) {
     return std::find(e.bodies.begin(), e.bodies.end(), bar.name) != e.bodies.end();
   };
@@ -235,10 +256,133 @@ void print_paper_comparison(std::ostream& out, const Scene& scene, const RunResu
   table.print(out);
 }
 
+// ---- watching a run ---------------------------------------------------------------------
+
+/// Passes everything on to the run directory, keeping on the way the extremes of the
+/// 'wall' probe that the comparison with the paper needs.
+class WatchingRecorder final : public RunRecorder {
+ public:
+  WatchingRecorder(const Scene& scene, RunRecorder& files) : files_(files) {
+    const auto& probes = scene.outputs.probes;
+    const auto wall = std::find_if(probes.begin(), probes.end(), [](const ProbeDecl& p) { return p.name == "wall"; });
+    wall_index_ = wall == probes.end() ? -1 : static_cast<int>(wall - probes.begin());
+  }
+  [[nodiscard]] const WallProbeExtremes& wall_probe() const { return wall_; }
+
+ private:
+  void record_front(const FrontSegment& segment) override { files_.front(segment); }
+  void record_probe(const ProbeSample& sample) override {
+    if (sample.probe == wall_index_) {
+      if (sample.quantity == Quantity::p) wall_.p_max = std::max(wall_.p_max.value_or(sample.value), sample.value);
+      if (sample.quantity == Quantity::s) wall_.s_min = std::min(wall_.s_min.value_or(sample.value), sample.value);
+    }
+    files_.probe(sample);
+  }
+  void record_snapshot(const SnapshotSample& sample) override { files_.snapshot(sample); }
+  void record_event(const RunEvent& event) override { files_.event(event); }
+
+  RunRecorder& files_;
+  int wall_index_ = -1;
+  WallProbeExtremes wall_;
+};
+
+/// One line on stderr, rewritten in place ('\r'): where the run is, how fast it goes
+/// and when it should end. Cleared when the run ends.
+class ProgressLine {
+ public:
+  explicit ProgressLine(const Scene& scene) : scene_(scene) {}
+  ~ProgressLine() { clear(); }
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+
+  void show(const RunProgress& progress) {
+    // Rates over the last interval, smoothed: a run's pace changes as fronts multiply.
+    const double dt_wall = progress.elapsed_s - last_.elapsed_s;
+    if (dt_wall > 0.0) {
+      const double sim_rate = (progress.t - last_.t) / dt_wall;
+      const double interaction_rate = static_cast<double>(progress.interactions - last_.interactions) / dt_wall;
+      const double weight = shown_ ? 0.3 : 1.0;
+      sim_rate_ = weight * sim_rate + (1.0 - weight) * sim_rate_;
+      interaction_rate_ = weight * interaction_rate + (1.0 - weight) * interaction_rate_;
+    }
+    last_ = progress;
+
+    const std::string unit(unit_symbol(Dimension::time, scene_.units));
+    std::string line = "t " + number(from_natural(progress.t, Dimension::time, scene_.units), 4) + " / " +
+                       number(from_natural(scene_.t_end, Dimension::time, scene_.units), 4) + " " + unit;
+    if (progress.fronts_alive >= 0) line += " | " + count(static_cast<double>(progress.fronts_alive)) + " fronts";
+    line += " | " + count(interaction_rate_) + " interactions/s";
+    line += " | " + (sim_rate_ > 0.0 ? duration((scene_.t_end - progress.t) / sim_rate_) : std::string("?")) + " left";
+    line += " | Ctrl-C stops";
+    // A line wider than the terminal would wrap, and '\r' would no longer return to its start.
+    if (const std::size_t columns = terminal_columns(); columns > 1 && line.size() > columns - 1)
+      line.resize(columns - 1);
+    const std::size_t width = line.size();
+    if (line.size() < width_) line.append(width_ - line.size(), ' ');  // cover the longer line before
+    width_ = width;
+    std::cerr << '\r' << line << std::flush;
+    shown_ = true;
+  }
+
+  void clear() {
+    if (!shown_) return;
+    std::cerr << '\r' << std::string(width_, ' ') << '\r' << std::flush;
+    shown_ = false;
+  }
+
+ private:
+  /// 1234567 as "1.23 M".
+  static std::string count(double value) {
+    if (value < 1e4) return number(std::round(value), 6);
+    if (value < 1e6) return number(value / 1e3, 3) + " k";
+    if (value < 1e9) return number(value / 1e6, 3) + " M";
+    return number(value / 1e9, 3) + " G";
+  }
+  static std::size_t terminal_columns() {
+    struct winsize size {};
+    if (::ioctl(STDERR_FILENO, TIOCGWINSZ, &size) != 0 || size.ws_col == 0) return 80;
+    return size.ws_col;
+  }
+  static std::string duration(double seconds) {
+    if (!std::isfinite(seconds) || seconds > 1e7) return "forever";
+    if (seconds < 100.0) return number(seconds, 2) + " s";
+    if (seconds < 6000.0) return number(seconds / 60.0, 2) + " min";
+    return number(seconds / 3600.0, 2) + " h";
+  }
+
+  const Scene& scene_;
+  RunProgress last_{};
+  double sim_rate_ = 0.0, interaction_rate_ = 0.0;
+  std::size_t width_ = 0;
+  bool shown_ = false;
+};
+
+/// While in scope, SIGINT (Ctrl-C) asks the solver to stop cleanly (request_interrupt);
+/// a second Ctrl-C ends the process at once, as usual.
+class InterruptHandler {
+ public:
+  InterruptHandler() {
+    struct sigaction action {};
+    action.sa_handler = [](int) { request_interrupt(); };
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESETHAND;
+    installed_ = ::sigaction(SIGINT, &action, &previous_) == 0;
+  }
+  ~InterruptHandler() {
+    if (installed_) ::sigaction(SIGINT, &previous_, nullptr);
+  }
+  InterruptHandler(const InterruptHandler&) = delete;
+  InterruptHandler& operator=(const InterruptHandler&) = delete;
+
+ private:
+  struct sigaction previous_ {};
+  bool installed_ = false;
+};
+
 }  // namespace
 
 int run_command(std::span<const std::string> args, std::ostream& out) {
-  static constexpr OptionSpec kOptions[] = {{"--out", true}, {"--set", true, true}};
+  static constexpr OptionSpec kOptions[] = {{"--out", true}, {"--set", true, true}, {"--quiet"}};
   const Arguments parsed = parse_arguments("run", args, kOptions);
   if (parsed.help) {
     out << help("run");
@@ -247,24 +391,51 @@ int run_command(std::span<const std::string> args, std::ostream& out) {
   if (parsed.positional.size() > 1) throw usage_error("run", "run takes at most one scene file");
   if (const auto dir = parsed.value("--out"); dir && dir->empty()) throw usage_error("run", "--out needs a directory");
   const std::vector<std::string> overrides = scene_overrides(parsed, "run");
+  const bool quiet = parsed.has("--quiet");
 
   const bool default_scene = parsed.positional.empty();
   const Scene scene = default_scene ? load_scene_string(default_scene_text(), "<default>", overrides)
                                     : load_scene_file(parsed.positional[0], overrides);
-  const RunResult result = solve(scene);
-
   const std::string dir =
       parsed.value("--out").value_or("out/" + (scene.name.empty() ? std::string("scene") : scene.name));
+
+  RunResult result;
+  WallProbeExtremes wall_probe;
   try {
-    write_run(scene, result, dir);
-  } catch (const NumericalError&) {
-    throw;
-  } catch (const std::runtime_error& e) {
+    // Outputs stream into a temporary directory, renamed into place once complete;
+    // an exception leaves nothing behind.
+    StreamingRecorder files(scene, dir);
+    WatchingRecorder recorder(scene, files);
+    const InterruptHandler interrupt_handler;
+    std::optional<ProgressLine> progress;
+    if (!quiet && ::isatty(STDERR_FILENO) == 1) {
+      progress.emplace(scene);
+      recorder.on_progress([&progress](const RunProgress& p) { progress->show(p); });
+    }
+    result = solve(scene, recorder);
+    if (progress) progress->clear();
+    files.commit(result);
+    wall_probe = recorder.wall_probe();
+  } catch (const OutputError& e) {
     throw CommandError(kExitInternal, "cannot write the outputs: " + std::string(e.what()));
   }
 
-  print_summary(out, scene, result, dir);
-  if (default_scene) print_paper_comparison(out, scene, result);
+  if (!quiet) {
+    for (const std::string& warning : result.warnings) std::cerr << "warning: " << warning << "\n";
+    print_summary(out, scene, result, dir);
+    if (default_scene) print_paper_comparison(out, scene, result, wall_probe);
+  }
+  if (result.status == to_string(RunStatus::stopped)) {
+    std::cerr << "stopped: " << result.stop_reason << "\n";
+    return kExitStopped;
+  }
+  if (result.status == to_string(RunStatus::interrupted)) {
+    std::cerr << "interrupted at t = " << number(from_natural(result.t_reached, Dimension::time, scene.units)) << " "
+              << unit_symbol(Dimension::time, scene.units)
+              << " of t_end = " << number(from_natural(scene.t_end, Dimension::time, scene.units)) << " "
+              << unit_symbol(Dimension::time, scene.units) << "; the outputs up to then are in " << dir << "\n";
+    return kExitInterrupted;
+  }
   return kExitOk;
 }
 

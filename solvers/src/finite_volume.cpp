@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "rigidity/errors.hpp"
+#include "rigidity/run_recorder.hpp"
 #include "rigidity/solvers/riemann.hpp"
 #include "rigidity/solvers/sampling.hpp"
 
@@ -107,7 +108,7 @@ struct InvariantSlopes {
 ///   5. contacts made or lost; (φ, s) recovered from U in every cell.
 class Scheme {
  public:
-  explicit Scheme(const Scene& scene) : scene_(scene), order_(scene.solver.order) {}
+  Scheme(const Scene& scene, RunRecorder& recorder) : scene_(scene), recorder_(recorder), order_(scene.solver.order) {}
   RunResult run();
 
  private:
@@ -160,12 +161,19 @@ class Scheme {
   [[nodiscard]] int locate(int body, double X, double& x) const;
   [[nodiscard]] double quantity(Quantity q, int c, double X, double x) const;
   void totals(double& energy, double& momentum) const;
+  /// Events wait in pending_events_ until no later step can date one before them
+  /// (a separation is dated at the step that parted it): the recorder gets them in time order.
   void event(double t, const char* kind, double x, std::vector<std::string> bodies) {
-    result_.events.push_back(RunEvent{t, kind, x, std::move(bodies)});
+    pending_events_.push_back(RunEvent{t, kind, x, std::move(bodies)});
   }
+  /// Hands the recorder, in time order, the pending events dated at or before `t`.
+  void release_events(double t);
+  /// The earliest time a later step can date an event: now, or the start of a parting not reported yet.
+  [[nodiscard]] double earliest_event_time(double t) const;
   [[nodiscard]] const std::string& body_name(int b) const { return scene_.bodies[b].name; }
 
   const Scene& scene_;
+  RunRecorder& recorder_;  ///< samples and events go there as they are produced
   int order_ = 2;
 
   // cells, left to right in lab order, body after body
@@ -188,6 +196,7 @@ class Scheme {
 
   std::vector<SampleTime> samples_;
   RunResult result_;
+  std::vector<RunEvent> pending_events_;
   double impulse_ = 0.0, wall_work_ = 0.0;
   long steps_ = 0;
   bool cavitation_warned_ = false;
@@ -676,8 +685,7 @@ void Scheme::sample(const SampleTime& st) {
     const int body = probe_body(scene_, probe);
     double x = 0.0;
     const int c = locate(body, probe.X, x);
-    for (Quantity q : probe.quantities)
-      result_.probes.push_back(ProbeSample{t, st.index, q, quantity(q, c, probe.X, x)});
+    for (Quantity q : probe.quantities) recorder_.probe(ProbeSample{t, st.index, q, quantity(q, c, probe.X, x)});
     return;
   }
   const SnapshotDecl& snap = scene_.outputs.snapshots[st.index];
@@ -697,9 +705,25 @@ void Scheme::sample(const SampleTime& st) {
       }
       const double x = x_face + (X - label_left_[c]) * u_[c][0];
       for (Quantity q : snap.quantities)
-        result_.snapshots.push_back(SnapshotSample{t, static_cast<int>(b), X, q, quantity(q, c, X, x)});
+        recorder_.snapshot(SnapshotSample{t, static_cast<int>(b), X, q, quantity(q, c, X, x)});
     }
   }
+}
+
+void Scheme::release_events(double t) {
+  std::stable_sort(pending_events_.begin(), pending_events_.end(),
+                   [](const RunEvent& a, const RunEvent& b) { return a.t < b.t; });
+  const auto later =
+      std::find_if(pending_events_.begin(), pending_events_.end(), [t](const RunEvent& e) { return e.t > t; });
+  for (auto e = pending_events_.begin(); e != later; ++e) recorder_.event(*e);
+  pending_events_.erase(pending_events_.begin(), later);
+}
+
+double Scheme::earliest_event_time(double t) const {
+  double earliest = t;
+  for (const Junction& junction : junctions_)
+    if (junction.touching && !std::isnan(junction.parted_since)) earliest = std::min(earliest, junction.parted_since);
+  return earliest;
 }
 
 void Scheme::totals(double& energy, double& momentum) const {
@@ -729,6 +753,7 @@ RunResult Scheme::run() {
   for (;;) {
     while (next_sample < samples_.size() && samples_[next_sample].t <= t) sample(samples_[next_sample++]);
     if (t >= t_end) break;
+    if (recorder_.poll(t, -1, result_.stats.interactions)) break;  // Ctrl-C; progress
     // The next time a step must land on.
     double target = t_end;
     if (next_sample < samples_.size()) target = std::min(target, samples_[next_sample].t);
@@ -771,13 +796,12 @@ RunResult Scheme::run() {
     recover(t_next);
     t = t_next;
     ++steps_;
+    release_events(earliest_event_time(t));
   }
 
-  for (; next_sample < samples_.size(); ++next_sample) sample(samples_[next_sample]);  // any beyond t_end
-
-  // Events dated as they happened (a separation is dated at the step that parted it).
-  std::stable_sort(result_.events.begin(), result_.events.end(),
-                   [](const RunEvent& a, const RunEvent& b) { return a.t < b.t; });
+  // Any samples beyond t_end (none if the run stopped early: its state is at t).
+  for (; next_sample < samples_.size() && !recorder_.stopped(); ++next_sample) sample(samples_[next_sample]);
+  release_events(kInf);
 
   // Close the books at t_end.
   Conservation& c = result_.conservation;
@@ -815,6 +839,15 @@ RunResult Scheme::run() {
 
 }  // namespace
 
-RunResult solve_finite_volume(const Scene& scene) { return Scheme(scene).run(); }
+RunResult solve_finite_volume(const Scene& scene, RunRecorder& recorder) {
+  RunResult result = Scheme(scene, recorder).run();
+  recorder.complete(result, scene.t_end);
+  return result;
+}
+
+RunResult solve_finite_volume(const Scene& scene) {
+  MemoryRecorder recorder;
+  return solve_finite_volume(scene, recorder);
+}
 
 }  // namespace rigidity

@@ -6,12 +6,17 @@
 
 namespace rigidity {
 
-RunResult solve(const Scene& scene) {
+RunResult solve(const Scene& scene, RunRecorder& recorder) {
   switch (scene.solver.method) {
-    case SolverMethod::characteristics: return solve_characteristics(scene);
-    case SolverMethod::finite_volume: return solve_finite_volume(scene);
+    case SolverMethod::characteristics: return solve_characteristics(scene, recorder);
+    case SolverMethod::finite_volume: return solve_finite_volume(scene, recorder);
   }
   throw NumericalError("unknown solver method");
+}
+
+RunResult solve(const Scene& scene) {
+  MemoryRecorder recorder;
+  return solve(scene, recorder);
 }
 
 }  // namespace rigidity

@@ -1,8 +1,15 @@
 // rigidity validate and rigidity run, end to end: exit status, messages and the
 // output directory (SPEC §4, §5).
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
 #include <cmath>
 #include <regex>
 #include <string>
+#include <thread>
 
 #include "../output/mini_json.hpp"
 #include "run_cli.hpp"
@@ -147,6 +154,111 @@ TEST_F(CliTest, RunOfAnInadmissibleSceneExitsThree) {
   EXPECT_EQ(r.exit_status, 3) << r.out << r.err;
   EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;
   EXPECT_FALSE(fs::exists(dir() / "out"));
+}
+
+TEST_F(CliTest, RunQuietPrintsNothingButWritesEverything) {
+  const CliOutcome r = rigidity("run --quiet --out run");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  for (const char* file : {"summary.json", "events.csv", "probes.csv", "snapshots.csv", "fronts.csv"})
+    EXPECT_TRUE(fs::exists(dir() / "run" / file)) << file;
+  EXPECT_EQ(rigidity("run --quiet --set bodies.0.velocity=2").exit_status, 2);  // errors still say why
+}
+
+TEST_F(CliTest, RunWritesEveryEventToEventsCsv) {
+  ASSERT_EQ(rigidity("run --out run").exit_status, 0);
+  const std::string events = read_text(dir() / "run" / "events.csv");
+  EXPECT_EQ(events.rfind("t,kind,x,bodies\n", 0), 0u) << events;
+  EXPECT_TRUE(std::regex_search(events, std::regex(R"(\n1,separation,0.8,bar\n)"))) << events;
+  const mini_json::Value summary = mini_json::parse(read_text(dir() / "run" / "summary.json"));
+  EXPECT_EQ(summary["event_counts"]["separation"].number, 1.0);
+}
+
+// The fronts of a constant_sound_speed bar against a wall multiply without bound after t = 2.
+const std::string kCascadeScene =
+    "name: cascade\n"
+    "materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}\n"
+    "bodies: [{name: bar, material: gas, position: 0, length: 1, velocity: 0.4}]\n"
+    "boundaries: {left: {type: free}, right: {type: wall}}\n"
+    "solver: {method: characteristics, tolerance: 1.0e-6}\n"
+    "time: {end: 2.1}\n"
+    "outputs:\n"
+    "  probes: [{name: wall, body: bar, at: right, quantities: [p, v], every: 0.01}]\n";
+
+TEST_F(CliTest, RunThatReachesABudgetStopsWithTheOutputsSoFarAndExitsOne) {
+  const std::string scene = write_file("cascade.yaml", kCascadeScene);
+  const CliOutcome r = rigidity("run " + scene + " --out run --set solver.max_interactions=20000");
+  EXPECT_EQ(r.exit_status, 1) << r.err;
+  EXPECT_TRUE(contains(r.err, "stopped: more than solver.max_interactions = 20000 interactions by t = 2.0"));
+  EXPECT_TRUE(contains(r.err, "solver.tolerance"));  // the advice for this scene
+  EXPECT_TRUE(contains(r.out, "cascade (cascade.yaml): stopped at t = 2.0"));
+  const mini_json::Value summary = mini_json::parse(read_text(dir() / "run" / "summary.json"));
+  EXPECT_EQ(summary["status"].string, "stopped");
+  EXPECT_GT(summary["t_reached"].number, 2.0);
+  EXPECT_LT(summary["t_reached"].number, 2.1);
+  EXPECT_TRUE(fs::exists(dir() / "run" / "probes.csv"));
+  EXPECT_FALSE(contains(read_text(dir() / "run" / "probes.csv"), "nan"));
+}
+
+/// `rigidity ARGS...` started in the background in `dir`, stdout and stderr to files there.
+pid_t start_rigidity(const fs::path& dir, const std::vector<std::string>& args) {
+  std::vector<std::string> argv_text{RIGIDITY_EXECUTABLE};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : argv_text) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  const std::string out = (dir / "stdout").string(), err = (dir / "stderr").string();
+  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  if (posix_spawn(&pid, RIGIDITY_EXECUTABLE, &actions, nullptr, argv.data(), environ) != 0) pid = -1;
+  posix_spawn_file_actions_destroy(&actions);
+  return pid;
+}
+
+TEST_F(CliTest, CtrlCStopsARunCleanlyWithTheOutputsSoFarAndExits130) {
+  // 300 Hooke segments ringing between bonded walls for 10^6 crossing times: minutes of work.
+  std::string scene =
+      "name: ringing\n"
+      "materials: {soft: {model: hooke, wave_speed: 0.5}}\n"
+      "bodies:\n  - name: bar\n    material: soft\n    segments:\n";
+  for (int k = 0; k < 300; ++k)
+    scene += "      - {length: 0.01, velocity: " + std::string(k % 2 == 0 ? "0.2" : "-0.2") + "}\n";
+  scene +=
+      "boundaries: {left: {type: wall, bonded: true}, right: {type: wall, bonded: true}}\n"
+      "time: {end: 1.0e6}\n"
+      "outputs:\n  probes: [{name: mid, body: bar, at: 1.5, quantities: [p], every: 1.0}]\n";
+  write_file("ringing.yaml", scene);
+  const fs::path out = dir() / "run";
+  const pid_t pid = start_rigidity(dir(), {"run", (dir() / "ringing.yaml").string(), "--out", out.string()});
+  ASSERT_GT(pid, 0);
+
+  // Once the run is under way (its temporary directory exists), press Ctrl-C.
+  const auto started = [&] {
+    for (const auto& entry : fs::directory_iterator(dir()))
+      if (entry.path().filename().string().rfind("run.tmp-", 0) == 0) return true;
+    return false;
+  };
+  for (int i = 0; i < 200 && !started(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(25));
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ASSERT_EQ(::kill(pid, SIGINT), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "ended by a signal, not cleanly";
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+
+  const std::string err = read_text(dir() / "stderr");
+  EXPECT_TRUE(contains(err, "interrupted at t = "));
+  const mini_json::Value summary = mini_json::parse(read_text(out / "summary.json"));
+  EXPECT_EQ(summary["status"].string, "interrupted");
+  EXPECT_GT(summary["t_reached"].number, 0.0);
+  EXPECT_LT(summary["t_reached"].number, 1.0e6);
+  const std::string probes = read_text(out / "probes.csv");
+  EXPECT_GT(probes.size(), std::string("t,probe,quantity,value\n").size());
+  EXPECT_FALSE(started());  // renamed into place
 }
 
 TEST_F(CliTest, RunRefusesToReplaceADirectoryThatIsNotARun) {

@@ -110,8 +110,8 @@ class WriteRun : public ::testing::Test {
 TEST_F(WriteRun, WritesEveryFileTheSceneAsksFor) {
   const fs::path dir = base_ / "run";
   write_run(wall_impact_scene(), wall_impact_result(), dir.string());
-  EXPECT_EQ(entries(dir), (std::vector<std::string>{"fronts.csv", "probes.csv", "resolved_scene.yaml", "snapshots.csv",
-                                                    "summary.json"}));
+  EXPECT_EQ(entries(dir), (std::vector<std::string>{"events.csv", "fronts.csv", "probes.csv", "resolved_scene.yaml",
+                                                    "snapshots.csv", "summary.json"}));
   EXPECT_EQ(entries(base_), std::vector<std::string>{"run"});  // no temporary left beside it
   EXPECT_EQ(read_file(dir / "resolved_scene.yaml"), wall_impact_scene().resolved_yaml);
   EXPECT_EQ(read_file(dir / "summary.json"), summary_json(wall_impact_scene(), wall_impact_result()));
@@ -122,16 +122,20 @@ TEST_F(WriteRun, WritesOnlyWhatTheSceneAsksFor) {
   scene.outputs = OutputsDecl{};
   const fs::path dir = base_ / "run";
   write_run(scene, wall_impact_result(), dir.string());
-  EXPECT_EQ(entries(dir), (std::vector<std::string>{"resolved_scene.yaml", "summary.json"}));
+  EXPECT_EQ(entries(dir), (std::vector<std::string>{"events.csv", "resolved_scene.yaml", "summary.json"}));
 }
 
 TEST_F(WriteRun, SummaryHasTheLayoutOfTheSpec) {
   const mini_json::Value doc = mini_json::parse(summary_json(wall_impact_scene(), wall_impact_result()));
-  EXPECT_EQ(doc.keys(), (std::vector<std::string>{"scene", "status", "t_end", "solver", "warnings", "events", "bodies",
-                                                  "conservation", "stats", "units"}));
+  EXPECT_EQ(doc.keys(),
+            (std::vector<std::string>{"scene", "status", "t_end", "t_reached", "solver", "warnings", "event_counts",
+                                      "events", "bodies", "conservation", "stats", "units"}));
   EXPECT_EQ(doc["scene"].string, "wall_impact");
   EXPECT_EQ(doc["status"].string, "ok");
   EXPECT_EQ(doc["t_end"].number, 1.5);
+  EXPECT_EQ(doc["t_reached"].number, 1.5);
+  EXPECT_EQ(doc["event_counts"].keys(), std::vector<std::string>{"separation"});
+  EXPECT_EQ(doc["event_counts"]["separation"].number, 1.0);
   EXPECT_EQ(doc["solver"]["method"].string, "characteristics");
   EXPECT_EQ(doc["solver"]["tolerance"].number, 1e-12);
   EXPECT_EQ(doc["warnings"][0].string, "a \"quoted\" warning\nover two lines");
@@ -325,7 +329,7 @@ TEST_F(WriteRun, AnExistingRunIsReplacedWhole) {
   Scene scene = wall_impact_scene();
   scene.outputs = OutputsDecl{};  // the new run has no probes: the old probes.csv must go too
   write_run(scene, wall_impact_result(), dir.string());
-  EXPECT_EQ(entries(dir), (std::vector<std::string>{"resolved_scene.yaml", "summary.json"}));
+  EXPECT_EQ(entries(dir), (std::vector<std::string>{"events.csv", "resolved_scene.yaml", "summary.json"}));
   EXPECT_EQ(entries(base_), std::vector<std::string>{"run"});
   EXPECT_EQ(mini_json::parse(read_file(dir / "summary.json"))["scene"].string, "wall_impact");
 }

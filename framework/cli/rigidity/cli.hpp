@@ -1,14 +1,15 @@
 #pragma once
 /// The rigidity command line (SPEC §4):
 ///
-///   rigidity run [SCENE.yaml] [--out DIR] [--set key.path=value ...]
+///   rigidity run [SCENE.yaml] [--out DIR] [--set key.path=value ...] [--quiet]
 ///   rigidity validate SCENE.yaml [--set key.path=value ...]
 ///   rigidity materials [NAME] [--json]
 ///   rigidity compare [--materials a,b,...] [--out DIR] [--speeds v1,v2,...] [--impact-speed v]
 ///                    [--param model.name=value ...]
 ///   rigidity plot RUN_DIR [--out DIR]
 ///
-/// Exit status: 0 done, 1 internal failure, 2 invalid input, 3 physically inadmissible.
+/// Exit status: 0 done, 1 internal failure or a run stopped by a budget, 2 invalid input,
+/// 3 physically inadmissible, 130 a run interrupted by Ctrl-C.
 /// This header is private to the executable.
 
 #include <filesystem>

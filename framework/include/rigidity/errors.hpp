@@ -4,6 +4,10 @@
 ///   InputError        exit 2  the scene (or a command-line argument) is invalid
 ///   InadmissibleError exit 3  the scene is valid but has no classical solution
 ///   NumericalError    exit 1  a numerical method failed (never reported as a number)
+///
+/// A run that stops early writes its outputs up to the time it reached, with status
+/// `stopped` (a budget: exit 1) or `interrupted` (Ctrl-C: exit 130, as a shell
+/// reports a command ended by SIGINT).
 
 #include <stdexcept>
 #include <string>
@@ -51,5 +55,7 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitInternal = 1;
 inline constexpr int kExitInvalidInput = 2;
 inline constexpr int kExitInadmissible = 3;
+inline constexpr int kExitStopped = 1;        ///< a budget reached; outputs up to the time reached
+inline constexpr int kExitInterrupted = 130;  ///< Ctrl-C; outputs up to the time reached
 
 }  // namespace rigidity

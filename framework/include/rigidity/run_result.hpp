@@ -1,8 +1,12 @@
 #pragma once
 /// What a solver hands back: everything the run outputs of SPEC §5 are written
 /// from, in natural units. Only what the scene's outputs asked for is filled.
+/// Fronts, samples and events go to a RunRecorder (run_recorder.hpp) as the solver
+/// produces them; the vectors below hold them when the recorder keeps them in memory
+/// (solve(scene)), and stay empty when it streams them to disk.
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rigidity/quantity.hpp"
@@ -16,7 +20,7 @@ struct RunEvent {
   std::vector<std::string> bodies;
 };
 
-/// One body (or piece of a parted body) at t_end.
+/// One body (or piece of a parted body) at t_end (at t_reached for a run that stopped early).
 struct BodyResult {
   std::string name;
   double x_left = 0.0, x_right = 0.0;
@@ -72,12 +76,15 @@ struct FrontSegment {
 };
 
 struct RunResult {
-  std::string status = "ok";
+  std::string status = "ok";        ///< ok | stopped (a budget) | interrupted (Ctrl-C): to_string(RunStatus)
+  double t_reached = 0.0;           ///< where the books were closed: t_end when ok, else the time reached
+  std::string stop_reason;          ///< stopped or interrupted: why, and what to change
   std::string solver;               ///< "characteristics" | "finite_volume"
   std::vector<std::pair<std::string, double>> solver_numbers;   ///< e.g. tolerance, cells
   std::vector<std::string> warnings;
-  std::vector<RunEvent> events;
-  std::vector<BodyResult> bodies;
+  std::vector<RunEvent> events;     ///< every event (in memory), or the first RunRecorder::kFirstEvents (streamed)
+  std::vector<std::pair<std::string, long>> event_counts;   ///< every event by kind, in order of first appearance
+  std::vector<BodyResult> bodies;   ///< at t_reached
   Conservation conservation;
   RunStats stats;
   std::vector<std::string> body_names;   ///< names snapshot samples refer to

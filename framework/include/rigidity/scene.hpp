@@ -62,8 +62,8 @@ enum class FluxType { hll, exact };
 struct SolverDecl {
   SolverMethod method = SolverMethod::characteristics;
   double tolerance = 1.0e-12;   ///< characteristics: target accuracy (fan step in Ψ)
-  long max_fronts = 1000000;    ///< characteristics: refuse to track more live fronts than this
-  long max_interactions = 1000000000;  ///< characteristics: stop with an error after this many interactions
+  long max_fronts = 1000000;    ///< characteristics: most fronts alive at once; beyond, the run stops (status stopped)
+  long max_interactions = 100000000;  ///< characteristics: most interactions of a run; beyond, the run stops
   int cells = 400;              ///< finite volume
   int order = 2;                ///< finite volume: 1 or 2
   double cfl = 0.5;             ///< finite volume

@@ -1,5 +1,9 @@
 // summary.json (SPEC §5): the run at a glance, in the scene's units.
+#include <algorithm>
+#include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "rigidity/json_writer.hpp"
 #include "rigidity/output.hpp"
@@ -56,7 +60,10 @@ std::string summary_json(const Scene& scene, const RunResult& result) {
   json.begin_object();
   json.key("scene").text(scene.name);
   json.key("status").text(result.status);
+  const bool ok = result.status == to_string(RunStatus::ok);
+  if (!ok) json.key("stop_reason").text(result.stop_reason);
   w.member("t_end", scene.t_end, Dimension::time);
+  w.member("t_reached", ok ? scene.t_end : result.t_reached, Dimension::time);
 
   json.key("solver").begin_object();
   json.key("method").text(result.solver.empty() ? method_name(scene.solver.method) : std::string_view(result.solver));
@@ -67,8 +74,26 @@ std::string summary_json(const Scene& scene, const RunResult& result) {
   for (const std::string& warning : result.warnings) json.text(warning);
   json.end_array();
 
+  // Every event is in events.csv; here their counts by kind and the first ones.
+  std::vector<std::pair<std::string, long>> counts = result.event_counts;
+  if (counts.empty()) {
+    for (const RunEvent& event : result.events) {
+      const auto c = std::find_if(counts.begin(), counts.end(), [&](const auto& k) { return k.first == event.kind; });
+      if (c == counts.end()) {
+        counts.emplace_back(event.kind, 1);
+      } else {
+        ++c->second;
+      }
+    }
+  }
+  json.key("event_counts").begin_object(JsonLayout::line);
+  for (const auto& [kind, count] : counts) json.key(kind).integer(count);
+  json.end_object();
+
   json.key("events").begin_array();
-  for (const RunEvent& event : result.events) {
+  const std::size_t listed = std::min(result.events.size(), RunRecorder::kFirstEvents);
+  for (std::size_t i = 0; i < listed; ++i) {
+    const RunEvent& event = result.events[i];
     json.begin_object(JsonLayout::line);
     w.member("t", event.t, Dimension::time);
     json.key("kind").text(event.kind);

@@ -1,5 +1,6 @@
 // The run output directory (SPEC §5): summary.json, probes.csv, snapshots.csv,
-// fronts.csv and resolved_scene.yaml, written whole or not at all.
+// fronts.csv, events.csv and resolved_scene.yaml, streamed into a temporary
+// directory as the solver produces them and renamed into place whole at the end.
 #include <array>
 #include <cerrno>
 #include <charconv>
@@ -78,7 +79,7 @@ class BufferedFile {
     buffer_.clear();
   }
   [[noreturn]] void fail(const char* what) const {
-    throw std::runtime_error(std::string(what) + " " + path_.string() + ": " + std::strerror(errno));
+    throw OutputError(std::string(what) + " " + path_.string() + ": " + std::strerror(errno));
   }
 
   fs::path path_;
@@ -125,96 +126,6 @@ double output_value(double natural_value, Dimension dimension, UnitSystem units,
   return value;
 }
 
-// ---- the CSV files ----------------------------------------------------------------
-
-void write_probes(const fs::path& path, const Scene& scene, const RunResult& result) {
-  const std::vector<ProbeDecl>& probes = scene.outputs.probes;
-  std::vector<std::string> names;
-  for (const ProbeDecl& probe : probes) names.push_back(csv_field(probe.name));
-
-  BufferedFile file(path);
-  file.put("t,probe,quantity,value\n");
-  for (const ProbeSample& sample : result.probes) {
-    if (sample.probe < 0 || static_cast<std::size_t>(sample.probe) >= probes.size())
-      throw std::runtime_error("probes.csv: a sample refers to probe " + std::to_string(sample.probe) +
-                               " but the scene declares " + std::to_string(probes.size()));
-    const auto where = [&] {
-      return "probes.csv: probe '" + probes[sample.probe].name + "' quantity " +
-             std::string(to_string(sample.quantity));
-    };
-    const double t = output_value(sample.t, Dimension::time, scene.units, [&] { return where() + ": t"; });
-    const double value = output_value(sample.value, dimension_of(sample.quantity), scene.units,
-                                      [&] { return where() + " at t = " + short_number(t) + ": value"; });
-    file.number(t);
-    file.put(',');
-    file.put(names[sample.probe]);
-    file.put(',');
-    file.put(to_string(sample.quantity));
-    file.put(',');
-    file.number(value);
-    file.put('\n');
-  }
-  file.close();
-}
-
-void write_snapshots(const fs::path& path, const Scene& scene, const RunResult& result) {
-  std::vector<std::string> names;
-  for (const std::string& name : result.body_names) names.push_back(csv_field(name));
-
-  BufferedFile file(path);
-  file.put("t,body,X,quantity,value\n");
-  for (const SnapshotSample& sample : result.snapshots) {
-    if (sample.body < 0 || static_cast<std::size_t>(sample.body) >= names.size())
-      throw std::runtime_error("snapshots.csv: a sample refers to body " + std::to_string(sample.body) +
-                               " but the run names " + std::to_string(names.size()));
-    const auto where = [&] {
-      return "snapshots.csv: body '" + result.body_names[sample.body] + "' quantity " +
-             std::string(to_string(sample.quantity));
-    };
-    const double t = output_value(sample.t, Dimension::time, scene.units, [&] { return where() + ": t"; });
-    const double X = output_value(sample.X, Dimension::length, scene.units,
-                                  [&] { return where() + " at t = " + short_number(t) + ": X"; });
-    const double value = output_value(sample.value, dimension_of(sample.quantity), scene.units, [&] {
-      return where() + " at t = " + short_number(t) + ", X = " + short_number(X) + ": value";
-    });
-    file.number(t);
-    file.put(',');
-    file.put(names[sample.body]);
-    file.put(',');
-    file.number(X);
-    file.put(',');
-    file.put(to_string(sample.quantity));
-    file.put(',');
-    file.number(value);
-    file.put('\n');
-  }
-  file.close();
-}
-
-void write_fronts(const fs::path& path, const Scene& scene, const RunResult& result) {
-  BufferedFile file(path);
-  file.put("t0,x0,t1,x1,kind,family\n");
-  for (std::size_t i = 0; i < result.fronts.size(); ++i) {
-    const FrontSegment& front = result.fronts[i];
-    const auto where = [&](const char* column) {
-      return [&i, column] { return "fronts.csv: front segment " + std::to_string(i) + ": " + column; };
-    };
-    file.number(output_value(front.t0, Dimension::time, scene.units, where("t0")));
-    file.put(',');
-    file.number(output_value(front.x0, Dimension::length, scene.units, where("x0")));
-    file.put(',');
-    file.number(output_value(front.t1, Dimension::time, scene.units, where("t1")));
-    file.put(',');
-    file.number(output_value(front.x1, Dimension::length, scene.units, where("x1")));
-    file.put(',');
-    file.put(to_string(front.kind));
-    file.put(',');
-    file.integer(front.family);
-    file.put('\n');
-  }
-  file.close();
-}
-
 // ---- the directory, replaced whole --------------------------------------------------
 
 /// The directory `dir` names, without a trailing separator.
@@ -223,8 +134,7 @@ fs::path output_path(const std::string& dir) {
   if (!path.has_filename()) path = path.parent_path();
   const fs::path name = path.filename();
   if (name.empty() || name == "." || name == "..")
-    throw std::runtime_error("output directory '" + dir +
-                             "' must name a directory of its own: it is replaced as a whole");
+    throw OutputError("output directory '" + dir + "' must name a directory of its own: it is replaced as a whole");
   return path;
 }
 
@@ -234,10 +144,10 @@ void check_replaceable(const fs::path& target) {
   const fs::file_status status = fs::status(target);
   if (!fs::exists(status)) return;
   if (!fs::is_directory(status))
-    throw std::runtime_error("output directory " + target.string() + " exists and is not a directory");
+    throw OutputError("output directory " + target.string() + " exists and is not a directory");
   if (!fs::is_empty(target) && !fs::exists(target / "summary.json"))
-    throw std::runtime_error("refusing to replace " + target.string() +
-                             ": it is not empty and holds no earlier run (no summary.json)");
+    throw OutputError("refusing to replace " + target.string() +
+                      ": it is not empty and holds no earlier run (no summary.json)");
 }
 
 /// A sibling of `target` named "<target>.<tag>-XXXXXX" that does not exist yet.
@@ -252,7 +162,7 @@ fs::path unused_sibling(const fs::path& target, std::string_view tag) {
     candidate += suffix;
     if (!fs::exists(fs::symlink_status(candidate))) return candidate;
   }
-  throw std::runtime_error("cannot find a free name for a temporary directory beside " + target.string());
+  throw OutputError("cannot find a free name for a temporary directory beside " + target.string());
 }
 
 /// The temporary sibling the outputs are written into; removed unless committed.
@@ -263,7 +173,7 @@ class TemporaryDirectory {
       fs::path candidate = unused_sibling(target, "tmp");
       if (fs::create_directory(candidate)) path_ = std::move(candidate);  // false: taken meanwhile
     }
-    if (path_.empty()) throw std::runtime_error("cannot create a temporary directory beside " + target.string());
+    if (path_.empty()) throw OutputError("cannot create a temporary directory beside " + target.string());
   }
   ~TemporaryDirectory() {
     if (path_.empty()) return;
@@ -300,25 +210,245 @@ class TemporaryDirectory {
   fs::path path_;
 };
 
+/// The parent directories of `target` that do not exist yet, created; removed again
+/// (if still empty) unless kept, so that a failed run leaves nothing behind.
+class CreatedParents {
+ public:
+  explicit CreatedParents(const fs::path& target) {
+    for (fs::path p = target.parent_path(); !p.empty() && !fs::exists(fs::symlink_status(p)); p = p.parent_path()) {
+      created_.push_back(p);
+      if (p == p.parent_path()) break;
+    }
+    if (target.has_parent_path()) fs::create_directories(target.parent_path());
+  }
+  ~CreatedParents() {
+    for (const fs::path& p : created_) {  // deepest first
+      std::error_code ignored;
+      fs::remove(p, ignored);  // fails harmlessly if something else is there now
+    }
+  }
+  CreatedParents(const CreatedParents&) = delete;
+  CreatedParents& operator=(const CreatedParents&) = delete;
+  void keep() { created_.clear(); }
+
+ private:
+  std::vector<fs::path> created_;
+};
+
+std::string join_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& name : names) out += (out.empty() ? "" : ";") + name;
+  return out;
+}
+
+/// `what` for a filesystem error, as an OutputError.
+template <class F>
+auto filesystem_step(const char* what, F&& step) {
+  try {
+    return step();
+  } catch (const fs::filesystem_error& e) {
+    throw OutputError(std::string(what) + ": " + e.what());
+  }
+}
+
 }  // namespace
+
+// ---- the streaming recorder ---------------------------------------------------------
+
+struct StreamingRecorder::Files {
+  Files(const Scene& s, const fs::path& t) : scene(s), target(t), parents(t), temporary(t) {}
+
+  const Scene& scene;
+  fs::path target;
+  CreatedParents parents;
+  TemporaryDirectory temporary;
+  std::unique_ptr<BufferedFile> probes, snapshots, fronts, events;
+  std::vector<std::string> probe_names, body_names;  ///< CSV fields
+  long front_count = 0;
+
+  [[nodiscard]] std::string nothing_written() const { return "; nothing was written to " + target.string(); }
+
+  void probe(const ProbeSample& sample) {
+    if (!probes) return;  // the scene asks for none
+    const std::vector<ProbeDecl>& decls = scene.outputs.probes;
+    if (sample.probe < 0 || static_cast<std::size_t>(sample.probe) >= decls.size())
+      throw OutputError("probes.csv: a sample refers to probe " + std::to_string(sample.probe) +
+                        " but the scene declares " + std::to_string(decls.size()));
+    const auto where = [&] {
+      return "probes.csv: probe '" + decls[sample.probe].name + "' quantity " + std::string(to_string(sample.quantity));
+    };
+    const double t = output_value(sample.t, Dimension::time, scene.units, [&] { return where() + ": t"; });
+    const double value = output_value(sample.value, dimension_of(sample.quantity), scene.units,
+                                      [&] { return where() + " at t = " + short_number(t) + ": value"; });
+    BufferedFile& file = *probes;
+    file.number(t);
+    file.put(',');
+    file.put(probe_names[sample.probe]);
+    file.put(',');
+    file.put(to_string(sample.quantity));
+    file.put(',');
+    file.number(value);
+    file.put('\n');
+  }
+
+  void snapshot(const SnapshotSample& sample) {
+    if (!snapshots) return;
+    if (sample.body < 0 || static_cast<std::size_t>(sample.body) >= body_names.size())
+      throw OutputError("snapshots.csv: a sample refers to body " + std::to_string(sample.body) +
+                        " but the scene has " + std::to_string(body_names.size()));
+    const auto where = [&] {
+      return "snapshots.csv: body '" + scene.bodies[sample.body].name + "' quantity " +
+             std::string(to_string(sample.quantity));
+    };
+    const double t = output_value(sample.t, Dimension::time, scene.units, [&] { return where() + ": t"; });
+    const double X = output_value(sample.X, Dimension::length, scene.units,
+                                  [&] { return where() + " at t = " + short_number(t) + ": X"; });
+    const double value = output_value(sample.value, dimension_of(sample.quantity), scene.units, [&] {
+      return where() + " at t = " + short_number(t) + ", X = " + short_number(X) + ": value";
+    });
+    BufferedFile& file = *snapshots;
+    file.number(t);
+    file.put(',');
+    file.put(body_names[sample.body]);
+    file.put(',');
+    file.number(X);
+    file.put(',');
+    file.put(to_string(sample.quantity));
+    file.put(',');
+    file.number(value);
+    file.put('\n');
+  }
+
+  void front(const FrontSegment& front) {
+    const long i = front_count++;
+    if (!fronts) return;
+    const auto where = [&](const char* column) {
+      return [&i, column] { return "fronts.csv: front segment " + std::to_string(i) + ": " + column; };
+    };
+    BufferedFile& file = *fronts;
+    file.number(output_value(front.t0, Dimension::time, scene.units, where("t0")));
+    file.put(',');
+    file.number(output_value(front.x0, Dimension::length, scene.units, where("x0")));
+    file.put(',');
+    file.number(output_value(front.t1, Dimension::time, scene.units, where("t1")));
+    file.put(',');
+    file.number(output_value(front.x1, Dimension::length, scene.units, where("x1")));
+    file.put(',');
+    file.put(to_string(front.kind));
+    file.put(',');
+    file.integer(front.family);
+    file.put('\n');
+  }
+
+  void event(const RunEvent& event) {
+    const auto where = [&](const char* column) {
+      return [&event, column] { return "events.csv: event '" + event.kind + "': " + column; };
+    };
+    BufferedFile& file = *events;
+    file.number(output_value(event.t, Dimension::time, scene.units, where("t")));
+    file.put(',');
+    file.put(csv_field(event.kind));
+    file.put(',');
+    file.number(output_value(event.x, Dimension::length, scene.units, where("x")));
+    file.put(',');
+    file.put(csv_field(join_names(event.bodies)));
+    file.put('\n');
+  }
+};
+
+StreamingRecorder::StreamingRecorder(const Scene& scene, const std::string& dir) {
+  const fs::path target = output_path(dir);
+  filesystem_step("cannot prepare the output directory", [&] {
+    check_replaceable(target);
+    files_ = std::make_unique<Files>(scene, target);
+  });
+  Files& f = *files_;
+  const fs::path& tmp = f.temporary.path();
+  for (const ProbeDecl& probe : scene.outputs.probes) f.probe_names.push_back(csv_field(probe.name));
+  for (const BodyDecl& body : scene.bodies) f.body_names.push_back(csv_field(body.name));
+  f.events = std::make_unique<BufferedFile>(tmp / "events.csv");
+  f.events->put("t,kind,x,bodies\n");
+  if (!scene.outputs.probes.empty()) {
+    f.probes = std::make_unique<BufferedFile>(tmp / "probes.csv");
+    f.probes->put("t,probe,quantity,value\n");
+  }
+  if (!scene.outputs.snapshots.empty()) {
+    f.snapshots = std::make_unique<BufferedFile>(tmp / "snapshots.csv");
+    f.snapshots->put("t,body,X,quantity,value\n");
+  }
+  if (scene.outputs.fronts) {
+    f.fronts = std::make_unique<BufferedFile>(tmp / "fronts.csv");
+    f.fronts->put("t0,x0,t1,x1,kind,family\n");
+  }
+}
+
+StreamingRecorder::~StreamingRecorder() = default;
+
+const fs::path& StreamingRecorder::target() const { return files_->target; }
+
+// A non-finite value is refused where it arrives, and the run fails with nothing written.
+void StreamingRecorder::record_front(const FrontSegment& segment) {
+  try {
+    files_->front(segment);
+  } catch (const NumericalError& e) {
+    throw NumericalError(e.what() + files_->nothing_written());
+  }
+}
+
+void StreamingRecorder::record_probe(const ProbeSample& sample) {
+  try {
+    files_->probe(sample);
+  } catch (const NumericalError& e) {
+    throw NumericalError(e.what() + files_->nothing_written());
+  }
+}
+
+void StreamingRecorder::record_snapshot(const SnapshotSample& sample) {
+  try {
+    files_->snapshot(sample);
+  } catch (const NumericalError& e) {
+    throw NumericalError(e.what() + files_->nothing_written());
+  }
+}
+
+void StreamingRecorder::record_event(const RunEvent& event) {
+  try {
+    files_->event(event);
+  } catch (const NumericalError& e) {
+    throw NumericalError(e.what() + files_->nothing_written());
+  }
+}
+
+void StreamingRecorder::commit(const RunResult& result) {
+  Files& f = *files_;
+  std::string summary;
+  try {
+    summary = summary_json(f.scene, result);
+  } catch (const NumericalError& e) {
+    throw NumericalError(e.what() + f.nothing_written());
+  }
+  for (std::unique_ptr<BufferedFile>* file : {&f.events, &f.probes, &f.snapshots, &f.fronts})
+    if (*file) (*file)->close();
+  const fs::path& tmp = f.temporary.path();
+  write_text_file(tmp / "summary.json", summary);
+  write_text_file(tmp / "resolved_scene.yaml", f.scene.resolved_yaml);
+  filesystem_step("cannot move the outputs into place", [&] { f.temporary.commit(f.target); });
+  f.parents.keep();
+}
 
 void write_run(const Scene& scene, const RunResult& result, const std::string& dir) {
   const fs::path target = output_path(dir);
   try {
-    const std::string summary = summary_json(scene, result);  // checked before anything touches the disk
-    check_replaceable(target);
-    if (target.has_parent_path()) fs::create_directories(target.parent_path());
-
-    TemporaryDirectory temporary(target);
-    write_text_file(temporary.path() / "summary.json", summary);
-    if (!scene.outputs.probes.empty()) write_probes(temporary.path() / "probes.csv", scene, result);
-    if (!scene.outputs.snapshots.empty()) write_snapshots(temporary.path() / "snapshots.csv", scene, result);
-    if (scene.outputs.fronts) write_fronts(temporary.path() / "fronts.csv", scene, result);
-    write_text_file(temporary.path() / "resolved_scene.yaml", scene.resolved_yaml);
-    temporary.commit(target);
-  } catch (const NumericalError& error) {
-    throw NumericalError(std::string(error.what()) + "; nothing was written to " + target.string());
+    (void)summary_json(scene, result);  // checked before anything touches the disk
+  } catch (const NumericalError& e) {
+    throw NumericalError(std::string(e.what()) + "; nothing was written to " + target.string());
   }
+  StreamingRecorder recorder(scene, dir);
+  for (const RunEvent& event : result.events) recorder.event(event);
+  for (const ProbeSample& sample : result.probes) recorder.probe(sample);
+  for (const SnapshotSample& sample : result.snapshots) recorder.snapshot(sample);
+  for (const FrontSegment& front : result.fronts) recorder.front(front);
+  recorder.commit(result);
 }
 
 }  // namespace rigidity

@@ -236,15 +236,19 @@ Key solver_key() {
           Key::number("tolerance", "characteristics: target accuracy (step of rarefaction fans in Psi)")
               .above(0.0)
               .defaults_to(1.0e-12),
-          Key::integer("max_fronts", "characteristics: refuse to track more live fronts than this")
+          Key::integer("max_fronts",
+                       "characteristics: most fronts alive at once, about 150 bytes each (the default is about "
+                       "150 MB); beyond it the run stops cleanly with status `stopped` and the outputs up to then")
               .at_least(1.0)
               .at_most(1.0e12)
               .defaults_to(1.0e6),
           Key::integer("max_interactions",
-                       "characteristics: stop with an error after this many interactions (a run that would never end)")
+                       "characteristics: most interactions (Riemann problems) of a run; the default is tens of seconds "
+                       "to minutes of solving (0.2 to 2 million interactions/s); beyond it the run stops cleanly "
+                       "with status `stopped` and the outputs up to then")
               .at_least(1.0)
               .at_most(1.0e15)
-              .defaults_to(1.0e9),
+              .defaults_to(1.0e8),
           Key::integer("cells", "finite_volume: number of cells").at_least(2.0).at_most(1.0e8).defaults_to(400.0),
           Key::integer("order", "finite_volume: spatial order, 1 or 2").one_of_values({1.0, 2.0}).defaults_to(2.0),
           Key::number("cfl", "finite_volume: Courant number").above(0.0).at_most(1.0).defaults_to(0.5),

@@ -23,11 +23,14 @@ FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b,
       a.stretch.value() * (std::expm1(b.stretch.log() - a.stretch.log()) * ca -
                            2.0 * std::sinh(0.5 * (a.rapidity + b.rapidity)) * std::sinh(half));
   const double speed = -std::sinh(b.rapidity - a.rapidity) / denominator;
-  if (!std::isfinite(speed) || denominator == 0.0) {
+  const double lab = std::tanh(a.rapidity) + speed * a.stretch.value() / ca;
+  // A coarse step (or a jump held off its curve) can give a speed against its family's
+  // direction or beyond light: it then moves at the mean characteristic speed instead.
+  if (!std::isfinite(speed) || denominator == 0.0 || !(family * speed > 0.0) || !(std::abs(lab) < 1.0)) {
     const FrontSpeeds sa = characteristic_speeds(m, a, family), sb = characteristic_speeds(m, b, family);
     return FrontSpeeds{0.5 * (sa.lagrangian + sb.lagrangian), 0.5 * (sa.lab + sb.lab)};
   }
-  return FrontSpeeds{speed, std::tanh(a.rapidity) + speed * a.stretch.value() / ca};
+  return FrontSpeeds{speed, lab};
 }
 
 Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch star, int family) {

@@ -19,7 +19,8 @@ double wave_strength(const Material& m, const State& a, const State& b, int fami
 /// m [s/γ] = −[v]; its lab speed is then the same seen from either side, so lab positions
 /// stay continuous across it. Written without cancellation for weak fronts:
 /// m = −sinh(φb − φa) / (sb cosh φa − sa cosh φb). Falls back to the mean characteristic
-/// speed of family `family` where the jump is too small to define it.
+/// speed of family `family` where the jump is too small to define it, or where that speed
+/// would run against the family's direction or faster than light (coarse fan steps).
 FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b, int family);
 
 /// The rapidity of the state at stretch `star` that a shock of family `family` connects to

@@ -310,9 +310,7 @@ void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, in
     ++result_.stats.fronts;
   }
   if (live_fronts_ > scene_.solver.max_fronts) {
-    throw NumericalError("more than solver.max_fronts = " + std::to_string(scene_.solver.max_fronts) +
-                         " live fronts at t = " + number(t) +
-                         "; raise solver.tolerance (coarser fans) or solver.max_fronts");
+    recorder_.stop(budget_stop_reason(scene_, Budget::fronts, t));  // the run stops after this interaction
   }
 }
 
@@ -339,10 +337,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   }
   steer_merges();
   if (++result_.stats.interactions > scene_.solver.max_interactions) {
-    throw NumericalError("more than solver.max_interactions = " + std::to_string(scene_.solver.max_interactions) +
-                         " interactions by t = " + number(t) + " (of t_end = " + number(scene_.t_end) +
-                         "); the bodies keep fragmenting or colliding: shorten time.end, coarsen solver.tolerance"
-                         " or raise solver.max_interactions");
+    recorder_.stop(budget_stop_reason(scene_, Budget::interactions, t));  // the run stops after this interaction
   }
   const int first = group.front(), last = group.back();
   const Node& nf = nodes_[first];

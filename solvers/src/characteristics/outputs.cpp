@@ -15,7 +15,7 @@ namespace rigidity::characteristics {
 void Tracker::record_segment(Node& n, double t) {
   if (!want_fronts_) return;
   if (t <= n.t0) return;  // nothing travelled
-  result_.fronts.push_back(FrontSegment{n.t0, n.x0, t, n.x_at(t), n.front_kind, n.family});
+  recorder_.front(FrontSegment{n.t0, n.x0, t, n.x_at(t), n.front_kind, n.family});
 }
 
 void Tracker::account_front_end(int id, double t) {
@@ -66,7 +66,7 @@ void Tracker::sample(const SampleTime& st) {
     double x = 0.0;
     if (!locate(body, probe.X, t, r, x)) return;
     for (Quantity q : probe.quantities)
-      result_.probes.push_back(ProbeSample{t, st.index, q, quantity(q, r, probe.X, x)});
+      recorder_.probe(ProbeSample{t, st.index, q, quantity(q, r, probe.X, x)});
     return;
   }
   const SnapshotDecl& snap = scene_.outputs.snapshots[st.index];
@@ -80,7 +80,7 @@ void Tracker::sample(const SampleTime& st) {
       double x = 0.0;
       if (!locate(static_cast<int>(b), X, t, r, x)) continue;
       for (Quantity q : snap.quantities)
-        result_.snapshots.push_back(SnapshotSample{t, static_cast<int>(b), X, q, quantity(q, r, X, x)});
+        recorder_.snapshot(SnapshotSample{t, static_cast<int>(b), X, q, quantity(q, r, X, x)});
     }
   }
 }

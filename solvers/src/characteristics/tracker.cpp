@@ -164,6 +164,7 @@ RunResult Tracker::run() {
       continue;
     }
     if (t_event > scene_.t_end) break;
+    if (recorder_.poll(t_event, live_fronts_, result_.stats.interactions)) break;  // a budget, Ctrl-C; progress
     if (rare_first) {
       const Event e = queue_.top();
       queue_.pop();
@@ -175,8 +176,8 @@ RunResult Tracker::run() {
       if (!interact_in_place(m.node, nodes_[m.node].next, m.t)) resolve(m.node, nodes_[m.node].next, m.t);
     }
   }
-  const double t_end = scene_.t_end;
-  for (; next_sample < samples_.size(); ++next_sample) sample(samples_[next_sample]);
+  const double t_end = recorder_.stopped() ? recorder_.t_reached() : scene_.t_end;
+  for (; next_sample < samples_.size() && !recorder_.stopped(); ++next_sample) sample(samples_[next_sample]);
 
   // Close the books at t_end.
   for (int side = 0; side < 2; ++side) flush_wall(side, t_end);
@@ -253,6 +254,15 @@ RunResult Tracker::run() {
 
 namespace rigidity {
 
-RunResult solve_characteristics(const Scene& scene) { return characteristics::Tracker(scene).run(); }
+RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
+  RunResult result = characteristics::Tracker(scene, recorder).run();
+  recorder.complete(result, scene.t_end);
+  return result;
+}
+
+RunResult solve_characteristics(const Scene& scene) {
+  MemoryRecorder recorder;
+  return solve_characteristics(scene, recorder);
+}
 
 }  // namespace rigidity

@@ -17,8 +17,10 @@
 
 #include "front_math.hpp"
 #include "meeting_queue.hpp"
+#include "rigidity/run_recorder.hpp"
 #include "rigidity/run_result.hpp"
 #include "rigidity/scene.hpp"
+#include "rigidity/solvers/budget.hpp"
 #include "rigidity/solvers/riemann.hpp"
 #include "rigidity/solvers/sampling.hpp"
 
@@ -126,7 +128,7 @@ struct WaveStates {
 
 class Tracker {
  public:
-  explicit Tracker(const Scene& scene) : scene_(scene) {
+  Tracker(const Scene& scene, RunRecorder& recorder) : scene_(scene), recorder_(recorder) {
     want_fronts_ = scene.outputs.fronts;
     fan_step_ = scene.solver.tolerance;
   }
@@ -221,11 +223,12 @@ class Tracker {
   double quantity(Quantity q, const Region& r, double X, double x) const;
   void totals(double t, double& energy, double& momentum) const;
   void event(double t, const char* kind, double x, std::vector<std::string> bodies) {
-    result_.events.push_back(RunEvent{t, kind, x, std::move(bodies)});
+    recorder_.event(RunEvent{t, kind, x, std::move(bodies)});
   }
   std::string piece_body_name(int piece) const { return scene_.bodies[pieces_[piece].body].name; }
 
   const Scene& scene_;
+  RunRecorder& recorder_;  ///< fronts, samples and events go there as they are produced
   bool want_fronts_ = false;
   double fan_step_ = 1e-12;
   bool fan_capped_ = false;

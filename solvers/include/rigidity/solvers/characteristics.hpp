@@ -13,12 +13,18 @@
 /// merge, and the live fronts are capped; the run reports the L1 error bound this
 /// costs (solver.error_bound, README "What the tolerance means").
 
+#include "rigidity/run_recorder.hpp"
 #include "rigidity/run_result.hpp"
 #include "rigidity/scene.hpp"
 
 namespace rigidity {
 
+/// Fronts, samples and events go to `recorder` as they are produced. A budget
+/// (solver.max_fronts, solver.max_interactions) or an interrupt stops the run
+/// cleanly at the time reached (RunResult::status `stopped` or `interrupted`).
 /// \throws InadmissibleError, NumericalError
+[[nodiscard]] RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder);
+/// The same, keeping every output in RunResult's vectors (a MemoryRecorder).
 [[nodiscard]] RunResult solve_characteristics(const Scene& scene);
 
 }  // namespace rigidity

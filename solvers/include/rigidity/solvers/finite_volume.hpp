@@ -50,6 +50,7 @@
 #include <Eigen/Core>
 
 #include "rigidity/material.hpp"
+#include "rigidity/run_recorder.hpp"
 #include "rigidity/run_result.hpp"
 #include "rigidity/scene.hpp"
 #include "rigidity/solvers/riemann.hpp"
@@ -57,8 +58,13 @@
 
 namespace rigidity {
 
+/// Samples and events go to `recorder` as they are produced; an interrupt stops the
+/// run cleanly at the time reached (status `interrupted`). The scheme has no budget:
+/// its cost, cells × steps, is known before it starts.
 /// \throws InadmissibleError when the scene has no classical solution,
 ///         NumericalError when the scheme leaves the admissible states.
+[[nodiscard]] RunResult solve_finite_volume(const Scene& scene, RunRecorder& recorder);
+/// The same, keeping every output in RunResult's vectors (a MemoryRecorder).
 [[nodiscard]] RunResult solve_finite_volume(const Scene& scene);
 
 namespace finite_volume {
