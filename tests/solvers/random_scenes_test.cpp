@@ -20,6 +20,9 @@
 namespace rigidity {
 namespace {
 
+/// The tolerance of the generated scenes (solver.tolerance).
+constexpr double kTolerance = 0.05;
+
 class SceneGenerator {
  public:
   explicit SceneGenerator(unsigned seed) : rng_(seed) {}
@@ -55,7 +58,8 @@ class SceneGenerator {
     }
     y << "boundaries:\n  left: " << boundary(0.0 - (coin() ? 0.0 : 0.3)) << "\n  right: " << boundary(x + 0.2)
       << "\n";
-    y << "solver: {tolerance: 0.05, max_fronts: 20000, max_interactions: 20000}\ntime: {end: " << uniform(1.0, 4.0) << "}\n";
+    y << "solver: {tolerance: " << kTolerance << ", max_fronts: 20000, max_interactions: 20000}\ntime: {end: "
+      << uniform(1.0, 4.0) << "}\n";
     y << "outputs:\n  snapshots: [{times: [0.5, 1.0], quantities: [s, p, v, x], samples: 21}]\n  fronts: true\n";
     return y.str();
   }
@@ -86,6 +90,19 @@ class SceneGenerator {
 
   std::mt19937 rng_;
 };
+
+/// Books of a scene whose every material is linearly degenerate: round-off over thousands
+/// of interactions (measured: 2e-15).
+constexpr double kRoundOff = 1e-12;
+/// Books of a scene with fans: O(ΔΨ²) per fan (measured: 3e-4 for momentum, 1e-3 for energy).
+constexpr double kFanBooks = 0.5 * kTolerance * kTolerance;
+
+bool linearly_degenerate(const Scene& scene) {
+  for (const BodyDecl& body : scene.bodies)
+    for (const Segment& segment : body.segments)
+      if (!scene.material_of(segment).linearly_degenerate()) return false;
+  return true;
+}
 
 TEST(RandomScenes, KeepEveryPhysicalProperty) {
   SceneGenerator generator(20261121u);
@@ -121,11 +138,20 @@ TEST(RandomScenes, KeepEveryPhysicalProperty) {
                          c.momentum_final, c.wall_impulse, c.wall_work})
       ASSERT_TRUE(std::isfinite(value));
     const double scale = c.energy_initial + std::abs(c.wall_work);
-    // Energy is never created: only walls' work adds it, shocks remove it; rarefaction
-    // fans split at solver.tolerance = 0.05 may err by a small fraction of that.
     EXPECT_GE(c.energy_dissipated, 0.0);
-    EXPECT_LE(c.energy_final, c.energy_initial + c.wall_work + 1e-3 * scale);
-    EXPECT_NEAR(c.momentum_final - c.momentum_initial, c.wall_impulse, 1e-3 * scale);
+    if (linearly_degenerate(scene)) {
+      // Every wave is a jump tracked exactly, every jump condition holds to round-off, and
+      // energy is conserved across each (SPEC §1): the books close to round-off.
+      EXPECT_EQ(c.energy_dissipated, 0.0);
+      EXPECT_NEAR(c.energy_final - c.energy_initial, c.wall_work, kRoundOff * scale);
+      EXPECT_NEAR(c.momentum_final - c.momentum_initial, c.wall_impulse, kRoundOff * scale);
+    } else {
+      // Energy is never created: only walls' work adds it, shocks remove it. A fan split
+      // into steps of ΔΨ = solver.tolerance moves each step at the mean of its sides'
+      // characteristic speeds, which meets the jump conditions only to O(ΔΨ²).
+      EXPECT_LE(c.energy_final, c.energy_initial + c.wall_work + kFanBooks * scale);
+      EXPECT_NEAR(c.momentum_final - c.momentum_initial, c.wall_impulse, kFanBooks * scale);
+    }
     for (const FrontSegment& f : r.fronts) {
       ASSERT_TRUE(std::isfinite(f.x0) && std::isfinite(f.x1) && std::isfinite(f.t1));
       ASSERT_GT(f.t1, f.t0);
