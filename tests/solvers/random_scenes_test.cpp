@@ -1,4 +1,4 @@
-// Randomized scenes (seeded): bodies of every material, gaps, segments, walls,
+// Randomized scenes (seeded): bodies of the four laws of SPEC §2, gaps, segments, walls,
 // bonded walls and pistons. Whatever the scene, the run must keep these properties:
 // finite outputs, no front faster than light, positive stretches, energy never
 // created, momentum changed only by walls and pistons, events in time order, and

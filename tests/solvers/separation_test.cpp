@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -18,8 +17,6 @@
 
 namespace rigidity {
 namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 std::vector<const RunEvent*> events_of(const RunResult& r, const std::string& kind) {
   std::vector<const RunEvent*> out;
