@@ -46,13 +46,13 @@
 #include <thread>
 #include <vector>
 
+#include "exact/law.hpp"
+#include "exact/profile.hpp"
+#include "exact/riemann.hpp"
 #include "rigidity/errors.hpp"
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/solve.hpp"
 #include "rigidity/stretch.hpp"
-#include "exact/law.hpp"
-#include "exact/profile.hpp"
-#include "exact/riemann.hpp"
 
 namespace {
 
@@ -107,8 +107,7 @@ wp::Profile wall_impact_profile(double v, double l0, double t) {
 /// configs/bar_on_bar.yaml: the flyer (labels [0, 1]) and the target (labels [0, 1]) touch at
 /// time 0 (`t` after contact); before a wave reaches a far end.
 std::vector<wp::Profile> collision_profiles(double v0, double t) {
-  const wp::Solution<double> sol =
-      wp::riemann_problem<double>(kFlyer, {std::atanh(v0), 1.0}, kTarget, {0.0, 1.0}, 0.0);
+  const wp::Solution<double> sol = wp::riemann_problem<double>(kFlyer, {std::atanh(v0), 1.0}, kTarget, {0.0, 1.0}, 0.0);
   return {wp::solution_profile(sol, 1.0, t, 0.0, 1.0), wp::solution_profile(sol, 0.0, t, 0.0, 1.0)};
 }
 
@@ -186,9 +185,7 @@ outputs:
 %s)",
                                          solver.c_str(), t_end, outputs.c_str());
                          },
-                         [](double t) {
-                           return std::vector<wp::Profile>{shock_tube_profile(t)};
-                         }});
+                         [](double t) { return std::vector<wp::Profile>{shock_tube_profile(t)}; }});
   return out;
 }
 

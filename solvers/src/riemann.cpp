@@ -411,7 +411,8 @@ Solved<double> shock_dissipation_rate(const Material& m, const State& left, cons
   //   [τ] = τl (exp(ln(sr/sl) + ln(cosh φl / cosh φr)) − 1),
   //   cosh φl / cosh φr − 1 = 2 sinh((φl + φr)/2) sinh((φl − φr)/2) / cosh φr.
   const double dv = std::sinh(phi_r - phi_l) / (ch_l * ch_r);
-  const double cosh_ratio = std::log1p(2.0 * std::sinh(0.5 * (phi_l + phi_r)) * std::sinh(0.5 * (phi_l - phi_r)) / ch_r);
+  const double cosh_ratio =
+      std::log1p(2.0 * std::sinh(0.5 * (phi_l + phi_r)) * std::sinh(0.5 * (phi_l - phi_r)) / ch_r);
   const double dtau = s_l / ch_l * std::expm1(right.stretch.log() - left.stretch.log() + cosh_ratio);
   if (dtau == 0.0) return {0.0, Status::ok};
   const double speed = -dv / dtau;  // label jump condition m [τ] = −[v]
@@ -422,10 +423,8 @@ Solved<double> shock_dissipation_rate(const Material& m, const State& left, cons
   }
   // δτ and δM by 8-point Gauss–Legendre on the halves of θ ∈ [0, 1]: f' is analytic along the
   // path and the path is short, so the rule is exact to round-off.
-  static constexpr double kNode[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
-                                      0.9602898564975363};
-  static constexpr double kWeight[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
-                                        0.1012285362903763};
+  static constexpr double kNode[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+  static constexpr double kWeight[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
   double delta_tau = 0.0, delta_momentum = 0.0;
   for (int i = 0; i < 8; ++i) {
     for (double sign : {-1.0, 1.0}) {

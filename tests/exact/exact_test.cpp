@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <set>
 #include <cmath>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -25,8 +25,15 @@ constexpr double kClosedForm = 1e-12;
 constexpr double kDerivative = 1e-9;
 
 std::vector<ClosedFormLaw<double>> laws() {
-  return {rigid(1.0), rigid(2.5), rigid_fluid(1.3), hooke(1.0, 0.5), hooke(2.0, 0.9), hooke(1.0, 0.2),
-          constant_sound_speed(1.0, 0.5), constant_sound_speed(1.7, 0.9), constant_sound_speed(1.0, 1.0)};
+  return {rigid(1.0),
+          rigid(2.5),
+          rigid_fluid(1.3),
+          hooke(1.0, 0.5),
+          hooke(2.0, 0.9),
+          hooke(1.0, 0.2),
+          constant_sound_speed(1.0, 0.5),
+          constant_sound_speed(1.7, 0.9),
+          constant_sound_speed(1.0, 1.0)};
 }
 
 /// Stretches inside a law's range, from strong compression to strong tension.

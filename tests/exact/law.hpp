@@ -50,8 +50,8 @@ class Law {
 
   /// The stretch at pressure p by bisection on ln s (p falls as s grows); NaN if unreachable.
   [[nodiscard]] virtual Real stretch_at_pressure(Real p) const {
-    const Real log_s = bisect<Real>([&](Real t) { return pressure(std::exp(t)) - p; }, search_log_min(),
-                                    search_log_max());
+    const Real log_s =
+        bisect<Real>([&](Real t) { return pressure(std::exp(t)) - p; }, search_log_min(), search_log_max());
     return std::exp(log_s);
   }
   /// The stretch at Ψ = psi by bisection on ln s (Ψ falls as s grows); NaN if unreachable.
@@ -78,18 +78,21 @@ template <class Real>
 class ClosedFormLaw final : public Law<Real> {
  public:
   /// `speed` is hooke's wave_speed V or constant_sound_speed's sound_speed V (ignored otherwise).
-  ClosedFormLaw(Model model, Real rest_density, Real speed = Real(1))
-      : model_(model), rho_(rest_density), b_(speed) {
+  ClosedFormLaw(Model model, Real rest_density, Real speed = Real(1)) : model_(model), rho_(rest_density), b_(speed) {
     // V = 1 is `rigid` (SPEC §2); hooke's formulas divide by 1 − V².
     if (model_ == Model::hooke && b_ == Real(1)) model_ = Model::rigid;
   }
 
   [[nodiscard]] std::string name() const override {
     switch (model_) {
-      case Model::rigid: return "rigid";
-      case Model::hooke: return "hooke";
-      case Model::rigid_fluid: return "rigid_fluid";
-      case Model::constant_sound_speed: return "constant_sound_speed";
+      case Model::rigid:
+        return "rigid";
+      case Model::hooke:
+        return "hooke";
+      case Model::rigid_fluid:
+        return "rigid_fluid";
+      case Model::constant_sound_speed:
+        return "constant_sound_speed";
     }
     return "?";
   }
@@ -99,8 +102,10 @@ class ClosedFormLaw final : public Law<Real> {
   [[nodiscard]] Real pressure(Real s) const override {
     switch (model_) {
       case Model::rigid:
-      case Model::rigid_fluid: return rho_ / 2 * (1 / (s * s) - 1);  // p = (ρ00/2)(1/s² − 1)
-      case Model::hooke: return energy_density(s) / r(s) - rho_;      // p = e/R − ρ00
+      case Model::rigid_fluid:
+        return rho_ / 2 * (1 / (s * s) - 1);  // p = (ρ00/2)(1/s² − 1)
+      case Model::hooke:
+        return energy_density(s) / r(s) - rho_;  // p = e/R − ρ00
       case Model::constant_sound_speed: {
         const Real k = 1 + b_ * b_;  // p = ρ00 V²/(1 + V²) (s^−(1+V²) − 1)
         return rho_ * b_ * b_ / k * (std::pow(s, -k) - 1);
@@ -111,9 +116,12 @@ class ClosedFormLaw final : public Law<Real> {
 
   [[nodiscard]] Real energy_density(Real s) const override {
     switch (model_) {
-      case Model::rigid: return rho_ / 2 * (1 / (s * s) + 1);  // e = (ρ00/2)(1/s² + 1)
-      case Model::rigid_fluid: return rho_ + pressure(s);      // e = ρ00 + p
-      case Model::hooke: return rho_ * (r(s) - b_ * b_) / (1 - b_ * b_);  // e = ρ00 (R − b²)/(1 − b²)
+      case Model::rigid:
+        return rho_ / 2 * (1 / (s * s) + 1);  // e = (ρ00/2)(1/s² + 1)
+      case Model::rigid_fluid:
+        return rho_ + pressure(s);  // e = ρ00 + p
+      case Model::hooke:
+        return rho_ * (r(s) - b_ * b_) / (1 - b_ * b_);  // e = ρ00 (R − b²)/(1 − b²)
       case Model::constant_sound_speed: {
         // dp/de = V² with e = ρ00 at p = 0: e = ρ00 + p/V²
         return rho_ + pressure(s) / (b_ * b_);
@@ -125,9 +133,12 @@ class ClosedFormLaw final : public Law<Real> {
   [[nodiscard]] Real sound_speed(Real s) const override {
     switch (model_) {
       case Model::rigid:
-      case Model::rigid_fluid: return 1;
-      case Model::hooke: return std::sqrt(b_ * b_ * s * s / (b_ * b_ * s * s + 1 - b_ * b_));
-      case Model::constant_sound_speed: return b_;
+      case Model::rigid_fluid:
+        return 1;
+      case Model::hooke:
+        return std::sqrt(b_ * b_ * s * s / (b_ * b_ * s * s + 1 - b_ * b_));
+      case Model::constant_sound_speed:
+        return b_;
     }
     return 0;
   }
@@ -137,12 +148,14 @@ class ClosedFormLaw final : public Law<Real> {
   [[nodiscard]] Real psi(Real s) const override {
     switch (model_) {
       case Model::rigid:
-      case Model::rigid_fluid: return -std::log(s);
+      case Model::rigid_fluid:
+        return -std::log(s);
       case Model::hooke: {
         const Real a = std::sqrt(1 - b_ * b_);
         return std::asinh(b_ / a) - std::asinh(b_ * s / a);
       }
-      case Model::constant_sound_speed: return -b_ * std::log(s);
+      case Model::constant_sound_speed:
+        return -b_ * std::log(s);
     }
     return 0;
   }
@@ -158,10 +171,14 @@ class ClosedFormLaw final : public Law<Real> {
   }
   [[nodiscard]] Real max_tension() const override {
     switch (model_) {
-      case Model::rigid: return -rho_ / 2;
-      case Model::rigid_fluid: return 0;
-      case Model::hooke: return -rho_ * b_ / (1 + b_);  // R → b as s → ∞
-      case Model::constant_sound_speed: return -rho_ * b_ * b_ / (1 + b_ * b_);
+      case Model::rigid:
+        return -rho_ / 2;
+      case Model::rigid_fluid:
+        return 0;
+      case Model::hooke:
+        return -rho_ * b_ / (1 + b_);  // R → b as s → ∞
+      case Model::constant_sound_speed:
+        return -rho_ * b_ * b_ / (1 + b_ * b_);
     }
     return 0;
   }
@@ -173,7 +190,8 @@ class ClosedFormLaw final : public Law<Real> {
     if (!(p > max_tension() || (model_ == Model::rigid_fluid && p == 0)) || !(p < max_pressure())) return nan;
     switch (model_) {
       case Model::rigid:
-      case Model::rigid_fluid: return 1 / std::sqrt(1 + 2 * p / rho_);
+      case Model::rigid_fluid:
+        return 1 / std::sqrt(1 + 2 * p / rho_);
       case Model::hooke: {
         const Real a2 = 1 - b_ * b_, R = b_ * b_ / (b_ * b_ - a2 * p / rho_);
         return std::sqrt(a2 / (R * R - b_ * b_));
@@ -189,14 +207,17 @@ class ClosedFormLaw final : public Law<Real> {
   /// Inverse of Ψ(s): e^−Ψ, e^−Ψ/V, and (a/b) sinh(asinh(b/a) − Ψ) for hooke.
   [[nodiscard]] Real stretch_at_psi(Real target) const override {
     switch (model_) {
-      case Model::rigid: return std::exp(-target);
-      case Model::rigid_fluid: return target >= 0 ? std::exp(-target) : std::numeric_limits<Real>::quiet_NaN();
+      case Model::rigid:
+        return std::exp(-target);
+      case Model::rigid_fluid:
+        return target >= 0 ? std::exp(-target) : std::numeric_limits<Real>::quiet_NaN();
       case Model::hooke: {
         const Real a = std::sqrt(1 - b_ * b_);
         const Real s = a / b_ * std::sinh(std::asinh(b_ / a) - target);
         return s > 0 ? s : std::numeric_limits<Real>::quiet_NaN();
       }
-      case Model::constant_sound_speed: return std::exp(-target / b_);
+      case Model::constant_sound_speed:
+        return std::exp(-target / b_);
     }
     return std::numeric_limits<Real>::quiet_NaN();
   }

@@ -66,13 +66,11 @@ inline Profile wave_profile(const Wave<double>& wave, double centre, double t, d
 
 /// A Riemann (or wall) solution centred at the label X_interface at time t, on [X_from, X_to]:
 /// the left wave's side below X_interface, the right wave's above.
-inline Profile solution_profile(const Solution<double>& sol, double X_interface, double t, double X_from,
-                                double X_to) {
+inline Profile solution_profile(const Solution<double>& sol, double X_interface, double t, double X_from, double X_to) {
   Profile out;
   if (X_from < X_interface)
     append_clipped(out, wave_profile(sol.left, X_interface, t, X_from, X_interface), X_from, X_to);
-  if (X_to > X_interface)
-    append_clipped(out, wave_profile(sol.right, X_interface, t, X_interface, X_to), X_from, X_to);
+  if (X_to > X_interface) append_clipped(out, wave_profile(sol.right, X_interface, t, X_interface, X_to), X_from, X_to);
   return out;
 }
 
@@ -134,7 +132,8 @@ inline double l1_distance(const std::vector<Piece>& numerical, const Profile& ex
     for (std::size_t k = j; k < exact.size() && exact[k].X0 < p.X1; ++k) {
       const double a = std::max(p.X0, exact[k].X0), b = std::min(p.X1, exact[k].X1);
       if (!(b > a)) continue;
-      sum += exact[k].fan ? detail::fan_l1(*exact[k].fan, p.value, a, b) : std::abs(p.value - exact[k].stretch) * (b - a);
+      sum +=
+          exact[k].fan ? detail::fan_l1(*exact[k].fan, p.value, a, b) : std::abs(p.value - exact[k].stretch) * (b - a);
     }
   }
   return sum;

@@ -131,8 +131,8 @@ struct Wave {
     if (xi >= right_edge_speed()) return right();
     if (kind != WaveKind::fan) return right();
     const Real psi_left = law->psi(left().stretch), psi_right = law->psi(right().stretch);
-    const Real psi = bisect<Real>([&](Real q) { return characteristic_speed(*law, on_curve(q), family) - xi; },
-                                  psi_left, psi_right);
+    const Real psi =
+        bisect<Real>([&](Real q) { return characteristic_speed(*law, on_curve(q), family) - xi; }, psi_left, psi_right);
     return on_curve(psi);
   }
 
@@ -193,9 +193,9 @@ Wave<Real> wave_to_pressure(const Law<Real>& law, const State<Real>& outer, int 
 /// The solution of a Riemann, wall or free-end problem, centred at the origin of (X, t).
 template <class Real>
 struct Solution {
-  bool solved = true;  ///< false: no classical solution (the material would be crushed)
-  bool parted = false; ///< the sides separate: each relaxes to the minimum pressure
-  Real pressure = 0;   ///< p* (the minimum pressure if parted)
+  bool solved = true;      ///< false: no classical solution (the material would be crushed)
+  bool parted = false;     ///< the sides separate: each relaxes to the minimum pressure
+  Real pressure = 0;       ///< p* (the minimum pressure if parted)
   Wave<Real> left, right;  ///< C− wave into the left state, C+ wave into the right (a wall's side: none)
 
   /// The state at Lagrangian speed ξ = (X − X_interface)/t: left material for ξ < 0, right for ξ ≥ 0.
@@ -245,8 +245,7 @@ Real decreasing_root(const F& f, PressureRange<Real> range, Real scale) {
 /// cavitation pressure whatever the caller says.
 template <class Real>
 Solution<Real> riemann_problem(const Law<Real>& law_left, const State<Real>& left, const Law<Real>& law_right,
-                               const State<Real>& right,
-                               Real min_pressure = -std::numeric_limits<Real>::infinity()) {
+                               const State<Real>& right, Real min_pressure = -std::numeric_limits<Real>::infinity()) {
   min_pressure = std::fmax(min_pressure, std::fmax(law_left.cavitation_pressure(), law_right.cavitation_pressure()));
   const auto rapidity_left = [&](Real p) { return wave_to_pressure(law_left, left, -1, p).star.rapidity; };
   const auto rapidity_right = [&](Real p) { return wave_to_pressure(law_right, right, +1, p).star.rapidity; };

@@ -100,8 +100,8 @@ TEST(Dissipation, ShockRateFromTheJumpMatchesTheExactShockOfEveryGenuinelyNonlin
     const exact::MaterialLaw law(m);
     for (double v : {0.1, 0.01, -0.1, -0.01}) {
       // Against a wall: compressions for v > 0, expansions for v < 0 (shocks for a reversed convexity).
-      const exact::Solution<double> ref = exact::wall_problem<double>(law, {std::atanh(v), 1.0}, exact::Side::left,
-                                                                      0.0, -std::numeric_limits<double>::infinity());
+      const exact::Solution<double> ref = exact::wall_problem<double>(law, {std::atanh(v), 1.0}, exact::Side::left, 0.0,
+                                                                      -std::numeric_limits<double>::infinity());
       if (!ref.solved || ref.left.kind != exact::WaveKind::shock) continue;
       ++shocks;
       const State outer{ref.left.outer.rapidity, Stretch::from_value(ref.left.outer.stretch)};

@@ -58,8 +58,8 @@ class SceneGenerator {
     }
     y << "boundaries:\n  left: " << boundary(0.0 - (coin() ? 0.0 : 0.3)) << "\n  right: " << boundary(x + 0.2)
       << "\n";
-    y << "solver: {tolerance: " << kTolerance << ", max_fronts: 20000, max_interactions: 20000}\ntime: {end: "
-      << uniform(1.0, 4.0) << "}\n";
+    y << "solver: {tolerance: " << kTolerance
+      << ", max_fronts: 20000, max_interactions: 20000}\ntime: {end: " << uniform(1.0, 4.0) << "}\n";
     y << "outputs:\n  snapshots: [{times: [0.5, 1.0], quantities: [s, p, v, x], samples: 21}]\n  fronts: true\n";
     return y.str();
   }

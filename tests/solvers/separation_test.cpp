@@ -59,8 +59,7 @@ TEST(Separation, EqualBarsPartAfterTwiceTheTransitTimeOfThePaper) {
     const RunResult r = solve(load_scene_string(two_bars(c.yaml, v, gap), "<test>"));
     const exact::Solution<double> hit =
         exact::wall_problem<double>(c.law, {std::atanh(v), 1.0}, exact::Side::left, 0.0, 0.0);
-    const exact::Solution<double> release =
-        exact::free_end_problem<double>(c.law, hit.left.star, exact::Side::right);
+    const exact::Solution<double> release = exact::free_end_problem<double>(c.law, hit.left.star, exact::Side::right);
     const double t_contact = gap / (2.0 * v);
     const double duration = -1.0 / hit.left.front_speed() + 1.0 / release.right.front_speed();
     if (c.law.model() == exact::Model::rigid) {
