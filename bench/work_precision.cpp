@@ -1,6 +1,6 @@
 // Work-precision driver: solver run time against the L1 error of the stretch, for the
 // characteristics front tracker and the finite-volume baseline, on three scenes with
-// exact solutions (bench/work_precision_exact.hpp):
+// exact solutions (the independent references of tests/exact):
 //   (a) wall_impact   the paper's rigid bar at v = 0.6 against a wall, s(X) at t = 0.25
 //                     (front running back) and t = 0.75 (after the reflection);
 //   (b) collision     configs/bar_on_bar.yaml: a rigid flyer (ρ = 1) at 0.5 c across a gap
@@ -23,7 +23,7 @@
 //     the samples are refined (4001, 16001, ... per body) until the sample intervals with
 //     a change of state are as many as the fronts and each recovered label lies in its
 //     interval.
-// L1 = Σ_bodies ∫_0^l0 |s_h − s| dX integrated exactly (work_precision_exact.hpp); the
+// L1 = Σ_bodies ∫_0^l0 |s_h − s| dX integrated exactly (exact/profile.hpp); the
 // larger over the error times.
 //
 // Outputs (--out DIR, default docs): work_precision.csv, work_precision.md (the table and
@@ -46,15 +46,17 @@
 #include <thread>
 #include <vector>
 
+#include "exact/law.hpp"
+#include "exact/profile.hpp"
+#include "exact/riemann.hpp"
 #include "rigidity/errors.hpp"
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/solve.hpp"
 #include "rigidity/stretch.hpp"
-#include "work_precision_exact.hpp"
 
 namespace {
 
-namespace wp = rigidity::work_precision;
+namespace wp = rigidity::exact;
 
 constexpr double kMinTime = 0.05;      ///< [s] Google Benchmark minimum time per configuration
 constexpr int kRepetitions = 3;        ///< the fastest is kept (the machine may be shared); in random order
@@ -73,13 +75,46 @@ struct SceneDef {
   /// The scene: solver block, end time, outputs block.
   std::function<std::string(const std::string&, double, const std::string&)> yaml;
   /// The exact profile of every body at t.
-  std::function<std::vector<wp::ExactProfile>(double)> exact;
+  std::function<std::vector<wp::Profile>(double)> exact;
 };
 
 std::string format(const char* fmt, auto... args) {
   char buf[4096];
   std::snprintf(buf, sizeof buf, fmt, args...);
   return buf;
+}
+
+// =====================================================================================
+// exact solutions (tests/exact: the laws of SPEC §2 in closed form, the jump conditions and
+// Riemann invariants of SPEC §1 solved by bisection; checked by tests/exact/exact_test.cpp)
+
+const wp::ClosedFormLaw<double> kSteel = wp::rigid(1.0);
+const wp::ClosedFormLaw<double> kFlyer = wp::rigid(1.0);
+const wp::ClosedFormLaw<double> kTarget = wp::hooke(2.0, 0.5);
+const wp::ClosedFormLaw<double> kGas = wp::constant_sound_speed(1.0, 0.5);
+
+/// The paper's wall impact: a rigid bar (labels [0, l0]) at v hits a wall at its right end at
+/// t = 0; the front runs back to the free rear, which it reaches at t1, and returns as the
+/// release. Valid for t < 2 t1.
+wp::Profile wall_impact_profile(double v, double l0, double t) {
+  const wp::Solution<double> hit = wp::wall_problem<double>(kSteel, {std::atanh(v), 1.0}, wp::Side::left, 0.0, 0.0);
+  const double t1 = -l0 / hit.left.front_speed();
+  if (t < t1) return wp::wave_profile(hit.left, l0, t, 0.0, l0);
+  const wp::Solution<double> release = wp::free_end_problem<double>(kSteel, hit.left.star, wp::Side::right);
+  return wp::wave_profile(release.right, 0.0, t - t1, 0.0, l0);
+}
+
+/// configs/bar_on_bar.yaml: the flyer (labels [0, 1]) and the target (labels [0, 1]) touch at
+/// time 0 (`t` after contact); before a wave reaches a far end.
+std::vector<wp::Profile> collision_profiles(double v0, double t) {
+  const wp::Solution<double> sol = wp::riemann_problem<double>(kFlyer, {std::atanh(v0), 1.0}, kTarget, {0.0, 1.0}, 0.0);
+  return {wp::solution_profile(sol, 1.0, t, 0.0, 1.0), wp::solution_profile(sol, 0.0, t, 0.0, 1.0)};
+}
+
+/// configs/shock_tube.yaml: s = 0.5 | 1 at rest, the jump at X = 0.5 of [0, 1].
+wp::Profile shock_tube_profile(double t) {
+  const wp::Solution<double> sol = wp::riemann_problem<double>(kGas, {0.0, 0.5}, kGas, {0.0, 1.0});
+  return wp::solution_profile(sol, 0.5, t, 0.0, 1.0);
 }
 
 std::vector<SceneDef> scenes() {
@@ -100,7 +135,7 @@ outputs:
 %s)",
                                          solver.c_str(), t_end, outputs.c_str());
                          },
-                         [](double t) { return std::vector<wp::ExactProfile>{wp::wall_impact_profile(0.6, 1.0, t)}; }});
+                         [](double t) { return std::vector<wp::Profile>{wall_impact_profile(0.6, 1.0, t)}; }});
   out.push_back(SceneDef{
       "collision",
       "configs/bar_on_bar.yaml: rigid flyer (rho 1, l0 1) at 0.5c across a gap onto a hooke target (rho 2, V 0.5, "
@@ -126,8 +161,7 @@ outputs:
       [](double t) {
         // The flyer's front end, at l0/γ0 + v0 t, reaches the target at x = 1.
         const double v0 = 0.5, contact = (1.0 - std::sqrt(1.0 - v0 * v0)) / v0;
-        const wp::CollisionProfiles p = wp::rigid_on_hooke_profiles(1.0, v0, 1.0, 2.0, 0.5, 1.0, t - contact);
-        return std::vector<wp::ExactProfile>{p.flyer, p.target};
+        return collision_profiles(v0, t - contact);
       }});
   out.push_back(SceneDef{"shock_tube",
                          "constant_sound_speed V = 0.5, s 0.5 | 1 at rest (configs/shock_tube.yaml); s at t = 0.3",
@@ -151,54 +185,8 @@ outputs:
 %s)",
                                          solver.c_str(), t_end, outputs.c_str());
                          },
-                         [](double t) {
-                           return std::vector<wp::ExactProfile>{
-                               wp::shock_tube_exact(1.0, 0.5, 0.5, 0.5, 1.0, t).profile};
-                         }});
+                         [](double t) { return std::vector<wp::Profile>{shock_tube_profile(t)}; }});
   return out;
-}
-
-/// The exact solutions solve the jump conditions of SPEC §1, and the closed-form
-/// material laws they use agree with the registered materials (the same physics as the
-/// solvers, checked once; the reference itself never calls them).
-void check_exact_solutions() {
-  auto require = [](bool ok, const std::string& what) {
-    if (!ok) throw std::runtime_error("work_precision: exact solution check failed: " + what);
-  };
-  // (b) label law m[s/γ] = −[v] and momentum law m[(e+p)sγv] = [p] at both fronts.
-  {
-    const double rho_a = 1.0, v0 = 0.5, rho_b = 2.0, b = 0.5, phi0 = std::atanh(v0);
-    const wp::RigidOnHookeStar st = wp::rigid_on_hooke_star(rho_a, phi0, rho_b, b);
-    const double vs = std::tanh(st.rapidity), gs = std::cosh(st.rapidity);
-    const double m_flyer = -std::exp(phi0);
-    require(std::abs(m_flyer * (1.0 / std::cosh(phi0) - st.stretch_rigid / gs) + (v0 - vs)) < 1e-13, "flyer label law");
-    const double p_rigid = 0.5 * rho_a * (1.0 / (st.stretch_rigid * st.stretch_rigid) - 1.0);
-    require(std::abs(p_rigid - st.pressure) < 1e-13, "flyer star pressure");
-    // rigid: (e + p) s = ρ/s
-    const double M_star = rho_a / st.stretch_rigid * std::sinh(st.rapidity), M0 = rho_a * std::sinh(phi0);
-    require(std::abs(m_flyer * (M0 - M_star) - (0.0 - st.pressure)) < 1e-12, "flyer momentum law");
-    const double a = std::sqrt(1.0 - b * b), s = st.stretch_hooke;
-    const double R = std::sqrt(b * b + a * a / (s * s)), e = rho_b * (R - b * b) / (a * a), p = e / R - rho_b;
-    require(std::abs(p - st.pressure) < 1e-12, "target star pressure");
-    require(std::abs(b * (1.0 - s / gs) - vs) < 1e-12, "target label law");
-    require(std::abs(b * (0.0 - (e + p) * s * std::sinh(st.rapidity)) - (0.0 - p)) < 1e-12, "target momentum law");
-  }
-  // (c) momentum law across the shock with m from the label law; fan tail = star.
-  {
-    const wp::ShockTubeExact ex = wp::shock_tube_exact(1.0, 0.5, 0.5, 0.5, 1.0, 0.3);
-    const double s = ex.stretch_star, phi = wp::css_shock_rapidity(1.0, 0.5, s);
-    const double p = wp::css_pressure(1.0, 0.5, s), A = std::pow(s, -0.25);
-    require(std::abs(ex.shock_speed * (0.0 - A * std::sinh(phi)) - (0.0 - p)) < 1e-12, "shock momentum law");
-    require(std::abs(ex.fan.rapidity_tail - phi) < 1e-12, "fan tail rapidity");
-    require(ex.fan.head() < ex.fan.tail() && ex.fan.tail() < 0.5 && 0.5 + 0.3 * ex.shock_speed < 1.0, "wave order");
-    const rigidity::Scene scene =
-        rigidity::load_scene_string(scenes()[2].yaml("{method: characteristics}", 0.3, "  fronts: false\n"), "<check>");
-    const rigidity::Material& gas = *scene.materials.at("gas").material;
-    for (double x : {0.3, 0.5, 0.8, 1.0, 1.7})
-      require(std::abs(gas.pressure(rigidity::Stretch::from_value(x)) - wp::css_pressure(1.0, 0.5, x)) <
-                  1e-13 * (1.0 + std::abs(wp::css_pressure(1.0, 0.5, x))),
-              "constant_sound_speed pressure law");
-  }
 }
 
 // =====================================================================================
@@ -281,7 +269,7 @@ double finite_volume_error(const SceneDef& def, Config& c) {
   const auto by_body = collect(r);
   double worst = 0.0;
   for (double t : def.times) {
-    const std::vector<wp::ExactProfile> exact = def.exact(t);
+    const std::vector<wp::Profile> exact = def.exact(t);
     double sum = 0.0;
     for (std::size_t b = 0; b < exact.size(); ++b) {
       const BodySamples& bs = by_body.at({t, static_cast<int>(b)});
@@ -303,7 +291,7 @@ double finite_volume_error(const SceneDef& def, Config& c) {
 double characteristics_error(const SceneDef& def, Config& c) {
   double worst = 0.0;
   for (double t : def.times) {
-    const std::vector<wp::ExactProfile> exact = def.exact(t);
+    const std::vector<wp::Profile> exact = def.exact(t);
     for (int samples = 4001;; samples = 4 * (samples - 1) + 1) {
       const rigidity::Scene scene = rigidity::load_scene_string(
           def.yaml(c.solver_block(), t, snapshot_block({t}, "x, s, gamma", samples, true)), "<wp>");
@@ -563,7 +551,6 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(n, args.data())) return 2;
 
   try {
-    check_exact_solutions();
     const std::vector<SceneDef> defs = scenes();
     std::vector<double> tolerances;
     for (int k = 1; k <= 12; k += quick ? 3 : 1) tolerances.push_back(std::pow(10.0, -k));

@@ -1,6 +1,7 @@
 // Bodies meeting bodies: a two-material collision against its exact Riemann
 // solution, spall of the rigid fluid against the rigid solid, and the shock tube
-// of the constant-sound-speed fluid converging as solver.tolerance shrinks.
+// of the constant-sound-speed fluid converging as solver.tolerance shrinks. The
+// exact solutions are the independent references of tests/exact.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,12 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "exact/flyer_plate.hpp"
+#include "exact/profile.hpp"
+#include "exact/riemann.hpp"
 #include "rigidity/registry.hpp"
 #include "rigidity/scene_loader.hpp"
-#include "rigidity/solvers/riemann.hpp"
 #include "rigidity/solvers/solve.hpp"
-#include "shock_tube_exact.hpp"
-#include "two_material_exact.hpp"
 
 namespace rigidity {
 namespace {
@@ -50,8 +51,11 @@ outputs:
   ASSERT_GE(count_events(r, "contact"), 1u);
   EXPECT_NEAR(r.events.front().t, 0.1 / 0.5, 1e-12);
 
-  const ExactStar exact = rigid_on_hooke_star(1.0, std::atanh(0.5), 2.0, 0.5);
-  const double p_star = exact.pressure, v_star = exact.velocity;
+  const auto flyer = exact::rigid(1.0);
+  const auto target = exact::hooke(2.0, 0.5);
+  const exact::Solution<double> exact =
+      exact::riemann_problem<double>(flyer, {std::atanh(0.5), 1.0}, target, {0.0, 1.0}, 0.0);
+  const double p_star = exact.pressure, v_star = exact::velocity(exact.right.star);
 
   double p_face = 0.0, v_face = 0.0;
   for (const ProbeSample& s : r.probes) {
@@ -87,6 +91,16 @@ TEST(Collision, FlyerPlateSpallsInTheRigidFluidButNotInTheRigidSolid) {
   const RunResult fluid = run_yaml(flyer_plate("rigid_fluid"));
   EXPECT_EQ(count_events(solid, "cavitation"), 0u);
   EXPECT_GE(count_events(fluid, "cavitation"), 1u);
+  // The fluid parts where and when the two release waves meet (closed form: every front at ±c).
+  const exact::FlyerPlateMeeting meeting = exact::symmetric_flyer_plate(0.0, 0.5, 0.5, 1.0, 0.3);
+  ASSERT_TRUE(meeting.valid);
+  const auto spall = std::find_if(fluid.events.begin(), fluid.events.end(), [](const RunEvent& e) {
+    return e.kind == "cavitation" && e.bodies == std::vector<std::string>{"target"};
+  });
+  ASSERT_NE(spall, fluid.events.end());
+  EXPECT_NEAR(spall->t, meeting.t_meet, 1e-12);
+  EXPECT_NEAR(spall->x, meeting.x_meet, 1e-12);
+  EXPECT_NEAR(fluid.events.front().t, meeting.t_contact, 1e-12);
   bool parted = false;
   for (const BodyResult& b : fluid.bodies) parted = parted || b.name == "target.2";
   EXPECT_TRUE(parted);
@@ -122,15 +136,16 @@ outputs:
     - {times: [0.3], quantities: [s], samples: 4001}
 )",
                 tolerance);
-  Scene scene;
-  const RunResult r = run_yaml(yaml, &scene);
-  const Material& m = *scene.materials.at("gas").material;
-  const ShockTube tube;
-  const RiemannSolution sol = solve_riemann(m, tube.left, m, tube.right, -1e300);
+  const RunResult r = run_yaml(yaml);
+  // The exact solution: a C− fan and a C+ shock from the jump at X = 0.5, before either
+  // reaches a wall.
+  const auto gas = exact::constant_sound_speed(1.0, 0.5);
+  const exact::Solution<double> sol = exact::riemann_problem<double>(gas, {0.0, 0.5}, gas, {0.0, 1.0});
+  const exact::Profile profile = exact::solution_profile(sol, 0.5, 0.3, 0.0, 1.0);
   double error = 0.0;
   int n = 0;
   for (const SnapshotSample& s : r.snapshots) {
-    error += std::abs(s.value - shock_tube_exact_stretch(m, sol, tube, s.X));
+    error += std::abs(s.value - exact::stretch_at(profile, s.X));
     ++n;
   }
   EXPECT_EQ(n, 4001);

@@ -127,4 +127,15 @@ void require_solved(const RiemannSolution& solution, const Material& material, d
 /// A shock between an outer state and a star state (same material), family -1 or +1.
 [[nodiscard]] FrontSpeeds shock_speeds(const Material& material, const State& outer, const State& star, int family);
 
+/// The energy a shock removes per unit time and area, D = m [E] − [p v] (SPEC §1), between its
+/// left and right states (one material, joined by the label and momentum jump conditions; m
+/// from the label condition). D is cubic in the strength of a weak shock while [E] and [p v]
+/// are linear: it is computed from the jump itself, without that cancellation, as
+///   D = m ([p] δτ − [v] δM),   δf = ∫₀¹ f dθ − (f₀ + f₁)/2 = ∫₀¹ (½ − θ) f'(θ) dθ,
+/// along the straight path from left to right in (p, v), with τ = s(p)/γ(v), M = h(p) γ(v) v,
+/// h = (e + p) s, dh/dp = s (from dE = −p dτ + v dM and the jump conditions). Strong shocks
+/// (|ln(s_r/s_l)| > 0.3) use the difference directly. Fails only if a stretch on the path
+/// cannot be found.
+[[nodiscard]] Solved<double> shock_dissipation_rate(const Material& material, const State& left, const State& right);
+
 }  // namespace rigidity

@@ -1,0 +1,92 @@
+#!/usr/bin/env bash
+# The mutation check: the test suite must notice each physics mutation of
+# scripts/mutations.txt (a factor in a material law, the shock jump conditions, the wall
+# reflection, the fan step, the contact rule, the energy bookkeeping).
+#
+# Copies the tree (tracked and untracked, not ignored, files) to a scratch directory,
+# builds the test executables the mutations name once, then for each mutation: replaces
+# its search text (which must occur exactly once), rebuilds those executables
+# incrementally, runs the tests it names and requires at least one to fail, and restores
+# the file. Exits non-zero if a mutation is missed, does not apply or does not build.
+#
+#   scripts/mutation_check.sh [MUTATIONS_FILE]       JOBS=2 by default
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+list=${1:-$root/scripts/mutations.txt}
+jobs=${JOBS:-2}
+start=$SECONDS
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+(cd "$root" && git ls-files -z --cached --others --exclude-standard | tar --null -T - -cf - 2>/dev/null) |
+  (mkdir -p "$work/src" && tar -xf - -C "$work/src")
+
+# name|file|search|replacement|suites: regex, one mutation per line.
+mapfile -t lines < <(grep -v '^[[:space:]]*\(#\|$\)' "$list")
+field() { awk -F ' [|] ' -v n="$2" '{ print $n }' <<<"$1"; }
+suites=()
+for line in "${lines[@]}"; do
+  target=$(field "$line" 5)
+  read -r -a names <<<"${target%%:*}"
+  suites+=("${names[@]}")
+done
+mapfile -t suites < <(printf '%s\n' "${suites[@]}" | sort -u)
+
+echo "mutation check: ${#lines[@]} mutations; building ${suites[*]}"
+cmake -S "$work/src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DRIGIDITY_BUILD_BENCHMARKS=OFF \
+  -DRIGIDITY_WERROR=OFF >/dev/null
+cmake --build "$work/build" -j "$jobs" --target "${suites[@]}" >/dev/null
+echo "mutation check: built in $((SECONDS - start)) s"
+
+missed=0
+for line in "${lines[@]}"; do
+  t0=$SECONDS
+  name=$(field "$line" 1)
+  file=$(field "$line" 2)
+  target=$(field "$line" 5)
+  read -r -a names <<<"${target%%:*}"
+  regex=$(sed 's/^ *//' <<<"${target#*:}")
+  path="$work/src/$file"
+  if [ ! -f "$path" ]; then
+    echo "mutation $name: no file $file" >&2
+    exit 2
+  fi
+  cp -p "$path" "$path.orig"
+  # Replace the search text, which must occur exactly once (perl: no quoting of the text).
+  if ! SEARCH=$(field "$line" 3) REPLACE=$(field "$line" 4) perl -0777 -i -pe '
+      my ($s, $r) = ($ENV{SEARCH}, $ENV{REPLACE});
+      my $n = () = /\Q$s\E/g;
+      die "found $n times\n" unless $n == 1;
+      s/\Q$s\E/$r/;' "$path"; then
+    echo "mutation $name: the search text of $file must occur exactly once:" >&2
+    echo "  $(field "$line" 3)" >&2
+    exit 2
+  fi
+  if ! build_log=$(cmake --build "$work/build" -j "$jobs" --target "${names[@]}" 2>&1); then
+    echo "$build_log" | tail -n 20 >&2
+    echo "mutation $name: does not build" >&2
+    exit 2
+  fi
+  labels="^($(IFS='|'; echo "${names[*]}"))\$"
+  set +e
+  output=$(ctest --test-dir "$work/build" -L "$labels" -R "$regex" --timeout 120 2>&1)
+  set -e
+  run=$(grep -c 'Test *#' <<<"$output" || true)
+  failed=$(grep -E '\*\*\*Failed|\*\*\*Timeout|\*\*\*Exception|SEGFAULT' <<<"$output" | sed -E 's/.*Test *#[0-9]+: ([^ ]+) .*/\1/' || true)
+  if [ "$run" -eq 0 ]; then
+    echo "mutation $name: no test matches $regex in ${names[*]}" >&2
+    exit 2
+  fi
+  if [ -n "$failed" ]; then
+    echo "mutation $name ($file): caught by $(wc -l <<<"$failed") of $run tests in $((SECONDS - t0)) s:"
+    sed 's/^/    /' <<<"$failed"
+  else
+    echo "mutation $name ($file): NOT CAUGHT by the $run tests matching $regex"
+    missed=$((missed + 1))
+  fi
+  mv "$path.orig" "$path"
+  touch "$path"
+done
+
+echo "mutation check: ${#lines[@]} mutations, $missed missed, $((SECONDS - start)) s"
+[ "$missed" -eq 0 ]
