@@ -8,6 +8,7 @@
 #include "exact/riemann.hpp"
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/solve.hpp"
+#include "error_bound.hpp"
 
 namespace rigidity {
 namespace {
@@ -114,12 +115,6 @@ outputs:
 /// Books of a scene whose every material is linearly degenerate: round-off.
 constexpr double kRoundOff = 1e-12;
 
-bool linearly_degenerate(const Scene& scene) {
-  for (const BodyDecl& body : scene.bodies)
-    for (const Segment& segment : body.segments)
-      if (!scene.material_of(segment).linearly_degenerate()) return false;
-  return true;
-}
 
 TEST(Configs, EverySceneRunsAndKeepsItsBooks) {
   int scenes = 0;

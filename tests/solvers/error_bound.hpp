@@ -15,6 +15,14 @@
 
 namespace rigidity {
 
+/// True if every material of the scene is linearly degenerate (every wave a jump).
+inline bool linearly_degenerate(const Scene& scene) {
+  for (const BodyDecl& body : scene.bodies)
+    for (const Segment& segment : body.segments)
+      if (!scene.material_of(segment).linearly_degenerate()) return false;
+  return true;
+}
+
 /// A number the solver reported under `solver` in summary.json; NaN if it did not.
 inline double solver_number(const RunResult& r, std::string_view name) {
   for (const auto& [key, value] : r.solver_numbers)

@@ -96,12 +96,6 @@ class SceneGenerator {
 /// (measured: 2e-15).
 constexpr double kRoundOff = 1e-12;
 
-bool linearly_degenerate(const Scene& scene) {
-  for (const BodyDecl& body : scene.bodies)
-    for (const Segment& segment : body.segments)
-      if (!scene.material_of(segment).linearly_degenerate()) return false;
-  return true;
-}
 
 TEST(RandomScenes, KeepEveryPhysicalProperty) {
   SceneGenerator generator(20261121u);
