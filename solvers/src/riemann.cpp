@@ -4,10 +4,13 @@
 #include <gsl/gsl_roots.h>
 
 #include <algorithm>
+#include <array>
+#include <charconv>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <string>
+#include <string_view>
+#include <system_error>
 
 #include "rigidity/errors.hpp"
 
@@ -16,50 +19,166 @@ namespace rigidity {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-/// Stand-in for an infinite rapidity mismatch inside a bracketing root find:
-/// far beyond any physical rapidity difference, small enough for Brent's arithmetic.
-constexpr double kHuge = 1.0e8;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+/// |ln s| beyond which no stretch is a state double arithmetic evaluates (s < 1e-304 or
+/// s > 1e304): the furthest a bracket search goes toward a range that has no end.
+constexpr double kLogStretchHorizon = 700.0;
+/// A material's inverse may round out of its range this close (relative) to one of its limits.
+constexpr double kLimitRoundOff = 1e-12;
 
-/// Brent's method (GSL) on a bracket with f(lo) < 0 < f(hi); converged to round-off in z.
+/// What failed, for the messages of numerical failures.
+constexpr std::string_view kPressureInverse = "the material's inverse stretch_at_pressure failed";
+constexpr std::string_view kPsiInverse = "the material's inverse stretch_at_psi failed";
+constexpr std::string_view kJumpConditions = "the shock jump conditions could not be solved";
+constexpr std::string_view kBrent = "Brent's method did not converge";
+constexpr std::string_view kBeyondDoubles = "the star state lies beyond the range of double precision";
+
+/// A value, or why it could not be computed.
+template <class T>
+struct Outcome {
+  T value{};
+  Status status = Status::ok;
+  std::string_view what;               ///< with a failed status: the computation that failed
+  const Material* material = nullptr;  ///< and the material it concerned
+  [[nodiscard]] bool ok() const { return status == Status::ok; }
+  /// The same failure, for a result of another type.
+  template <class U>
+  [[nodiscard]] Outcome<U> as() const {
+    return Outcome<U>{U{}, status, what, material};
+  }
+};
+
+/// Which end of a material's range: compression (s smallest, p → max_pressure, Ψ → Ψ_max) or
+/// tension (s largest, p → max_tension, Ψ → Ψ_min).
+enum class End { compression, tension };
+
+/// Ψ lies beyond the end of the material's range (an end at a finite stretch is in the range).
+bool beyond_psi(const Material& m, double psi, End end) {
+  const StretchRange range = m.admissible();
+  if (end == End::compression) return psi > m.psi_max() || (psi == m.psi_max() && !std::isfinite(range.log_min));
+  return psi < m.psi_min() || (psi == m.psi_min() && !std::isfinite(range.log_max));
+}
+
+/// A computed value.
+template <class T>
+Outcome<T> succeeded(T value) {
+  return Outcome<T>{value, Status::ok, {}, nullptr};
+}
+
+/// A function of the material failed. out_of_range is the solver's own verdict on a physical
+/// limit, reached through the limits the material declares; a function failing inside them is
+/// a numerical failure, whatever status it gave.
+template <class T>
+Outcome<T> numerical_failure(Status status, std::string_view what, const Material& m) {
+  return Outcome<T>{T{}, status == Status::out_of_range ? Status::not_converged : status, what, &m};
+}
+
+/// p within round-off of a limit of the material's pressure.
+bool at_pressure_limit(const Material& m, double p) {
+  const auto near = [p](double limit) {
+    return std::isfinite(limit) && std::abs(p - limit) <= kLimitRoundOff * std::abs(limit);
+  };
+  return p >= m.max_pressure() || p <= m.max_tension() || near(m.max_pressure()) || near(m.max_tension());
+}
+
+/// A function for Brent's method whose evaluation can fail (f returns Outcome<double>). The
+/// first failure is kept, and that evaluation, like every later one, gives NaN, on which GSL
+/// stops (GSL_EBADFUNC); the caller then reports failure(), never an iterate.
 template <class F>
-Solved<double> find_root(const F& f, double lo, double hi) {
+class Recording {
+ public:
+  explicit Recording(const F& f) : f_(&f) {}
+  double operator()(double z) const {
+    if (!failure_.ok()) return kNaN;
+    const Outcome<double> r = (*f_)(z);
+    if (!r.ok()) {
+      failure_ = r;
+      return kNaN;
+    }
+    return r.value;
+  }
+  [[nodiscard]] const Outcome<double>& failure() const { return failure_; }
+
+ private:
+  const F* f_;
+  mutable Outcome<double> failure_;
+};
+
+/// Brent's method (GSL) on a bracket where f changes sign; converged to round-off in z, or to
+/// `absolute` if that is larger. A failed evaluation of f ends it with that failure.
+template <class F>
+Outcome<double> find_root(const F& f, double lo, double hi, const Material& m, double absolute = 1.0e-300) {
   gsl_set_error_handler_off();
-  gsl_function fn{[](double z, void* params) { return (*static_cast<const F*>(params))(z); },
-                  const_cast<F*>(&f)};
+  const Recording<F> recording(f);
+  gsl_function fn{[](double z, void* params) { return (*static_cast<const Recording<F>*>(params))(z); },
+                  const_cast<Recording<F>*>(&recording)};
   gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-  if (solver == nullptr) return Solved<double>::failure(Status::not_converged);
-  Solved<double> result = Solved<double>::failure(Status::not_converged);
+  if (solver == nullptr) return numerical_failure<double>(Status::not_converged, kBrent, m);
+  Outcome<double> result = numerical_failure<double>(Status::not_converged, kBrent, m);
   if (gsl_root_fsolver_set(solver, &fn, lo, hi) == GSL_SUCCESS) {
     for (int iter = 0; iter < 300; ++iter) {
       if (gsl_root_fsolver_iterate(solver) != GSL_SUCCESS) break;
       const double a = gsl_root_fsolver_x_lower(solver), b = gsl_root_fsolver_x_upper(solver);
       const double root = gsl_root_fsolver_root(solver);
-      if (gsl_root_test_interval(a, b, 1.0e-300, 2.0 * std::numeric_limits<double>::epsilon()) == GSL_SUCCESS ||
-          f(root) == 0.0) {
-        result = Solved<double>{root, Status::ok};
+      if (gsl_root_test_interval(a, b, absolute, 2.0 * std::numeric_limits<double>::epsilon()) == GSL_SUCCESS ||
+          recording(root) == 0.0) {
+        result = succeeded<double>(root);
         break;
       }
     }
   }
   gsl_root_fsolver_free(solver);
+  if (!recording.failure().ok()) return recording.failure();
   return result;
 }
 
-/// Expands from `start` in direction `dir` (±1) until f takes the wanted sign
-/// (f < 0 for dir = -1, f > 0 for dir = +1), staying inside [limit_lo, limit_hi].
+/// Where a search for a sign change ended.
+struct Reach {
+  bool found = false;     ///< f(z) has the sign sought; false: f keeps its sign to the end of its domain
+  double z = 0.0;         ///< where it was found (or the end of the domain)
+  double value = 0.0;     ///< f(z): if not found, the limit of f at the end of the domain
+  double previous = 0.0;  ///< the last point before z, where f has the other sign: the bracket's other end
+};
+
+/// From `start`, where f has the sign −dir, toward `end` (the end of f's domain in direction
+/// dir; ±inf allowed), a point where f has the sign of dir. Steps grow geometrically, step·2^k,
+/// so a finite end is reached in a bounded number of steps; there the end decides, with f's own
+/// value (its limit) at the end: of the wrong sign, the domain holds no root (not found: a
+/// physical limit, for the caller to report); finite, it closes the bracket; infinite (or not
+/// known), it is approached by halving the distance. An infinite end is searched to
+/// |ln s| = kLogStretchHorizon: a root beyond is a star state no double represents.
 template <class F>
-Solved<double> expand_bracket(const F& f, double start, int dir, double limit_lo, double limit_hi,
-                              double first_step = 0.5) {
-  double step = first_step;
+Outcome<Reach> reach_sign(const F& f, double start, double dir, double step, double end, const Material& m) {
+  const double last = std::isfinite(end) ? end : dir * std::max(kLogStretchHorizon, std::abs(start) + 1.0);
   double z = start;
-  for (int i = 0; i < 200; ++i) {
-    z = std::clamp(z + dir * step, limit_lo, limit_hi);
-    const double value = f(z);
-    if ((dir < 0 && value < 0.0) || (dir > 0 && value > 0.0)) return {z, Status::ok};
-    if (z == limit_lo || z == limit_hi) break;
-    step *= 2.0;
+  for (int k = 0; k < 1100; ++k) {
+    const double next = start + dir * std::ldexp(step, k);
+    if (!(dir * (next - last) < 0.0)) break;
+    const Outcome<double> v = f(next);
+    if (!v.ok()) return v.template as<Reach>();
+    if (dir * v.value > 0.0) return succeeded<Reach>(Reach{true, next, v.value, z});
+    z = next;
   }
-  return Solved<double>::failure(Status::no_bracket);
+  const Outcome<double> at_end = f(end);
+  if (!at_end.ok()) return at_end.template as<Reach>();
+  if (!std::isnan(at_end.value) && !(dir * at_end.value > 0.0))
+    return succeeded<Reach>(Reach{false, end, at_end.value, z});
+  if (std::isfinite(end)) {
+    if (std::isfinite(at_end.value)) return succeeded<Reach>(Reach{true, end, at_end.value, z});
+    for (;;) {
+      const double next = z + 0.5 * (end - z);
+      if (next == z || next == end) break;
+      const Outcome<double> v = f(next);
+      if (!v.ok()) return v.template as<Reach>();
+      if (dir * v.value > 0.0) return succeeded<Reach>(Reach{true, next, v.value, z});
+      z = next;
+    }
+  } else if (dir * (last - z) > 0.0) {
+    const Outcome<double> v = f(last);
+    if (!v.ok()) return v.template as<Reach>();
+    if (dir * v.value > 0.0) return succeeded<Reach>(Reach{true, last, v.value, z});
+  }
+  return numerical_failure<Reach>(Status::not_converged, kBeyondDoubles, m);
 }
 
 /// The rapidity behind a shock of family `family` (−1: C−, +1: C+) that takes the
@@ -68,94 +187,285 @@ Solved<double> expand_bracket(const F& f, double start, int dir, double limit_lo
 /// Lagrangian speed m
 ///     H(φ*) = [v] [(e+p) s γ v] + [p] [s/γ] = 0,
 /// with one root on each side of the outer rapidity; the family picks the side.
-/// H < 0 at φ* = φ_outer for a compression and grows without bound away from it.
-Solved<double> shock_star_rapidity(const Material& m, const State& outer, Stretch star, int family) {
+/// H = [p] [s/γ] < 0 at φ* = φ_outer (p falls as s grows) and grows without bound away from it.
+Outcome<double> shock_star_rapidity(const Material& m, const State& outer, Stretch star, int family) {
   const double p_outer = m.pressure(outer.stretch), p_star = m.pressure(star);
-  const double v_outer = std::tanh(outer.rapidity);
+  const double cosh_outer = std::cosh(outer.rapidity);
   const double labels_outer = label_density(outer), momentum_outer = momentum_density(m, outer);
+  // [v] = tanh φ* − tanh φ_outer = sinh(φ* − φ_outer)/(cosh φ* cosh φ_outer): exact where both
+  // tanh round to ±1 (|φ| > 19).
   const auto hugoniot = [&](double rapidity) {
     const State st{rapidity, star};
-    return (std::tanh(rapidity) - v_outer) * (momentum_density(m, st) - momentum_outer) +
-           (p_star - p_outer) * (label_density(st) - labels_outer);
+    const double cosh_star = std::cosh(rapidity);
+    return std::sinh(rapidity - outer.rapidity) / cosh_star / cosh_outer * (momentum_density(m, st) - momentum_outer) +
+           (p_star - p_outer) * (star.value() / cosh_star - labels_outer);
   };
-  // Increasing away from the outer rapidity on the family's side: g(d) = H(φ_outer + family d).
-  // The rarefaction curve's rapidity change |ΔΨ| agrees with the shock's to second order in
-  // the strength: bracket the root tightly around it, so that Brent needs few steps.
-  // The star moves against the family's direction in a compression (a C− shock slows the
-  // left state) and with it in an expansion; the rarefaction curve gives the side.
-  const double psi_change = m.riemann_psi(star) - m.riemann_psi(outer.stretch);
-  const double direction = psi_change > 0.0 ? family : -family;
+  // The star moves against the family's direction in a compression (a C− shock slows the left
+  // state) and with it in an expansion: g(d) = H(φ_outer + direction d) grows with d ≥ 0.
+  const double direction = star.log() < outer.stretch.log() ? family : -family;
   const auto g = [&](double d) { return hugoniot(outer.rapidity + direction * d); };
-  const double guess = std::abs(psi_change);
-  const double step = 0.02 * guess + 1e-300;
+  const auto failure = [&m] { return numerical_failure<double>(Status::not_converged, kJumpConditions, m); };
+  const auto at = [&](double d) { return succeeded<double>(outer.rapidity + direction * d); };
+  // H(φ_outer) = [p] [s/γ] (the [v] term vanishes exactly) has the sign of [p] [s]. A jump for
+  // which that rounds to ≥ 0 is too weak for the arithmetic to tell from none: its rapidity
+  // change is below round-off.
+  const double at_outer = (p_star - p_outer) * (star.value() - outer.stretch.value());
+  if (std::isnan(at_outer)) return failure();
+  if (at_outer >= 0.0) return at(0.0);
+  // The rarefaction curve's |ΔΨ| agrees with the shock's rapidity change to second order in the
+  // strength: bracket tightly around it, so that Brent needs few steps. Where ΔΨ rounds away
+  // (a star an ulp from the outer stretch), c_s |Δ ln s| gives the same scale.
+  const double guess = std::max(std::abs(m.riemann_psi(star) - m.riemann_psi(outer.stretch)),
+                                m.sound_speed(outer.stretch) * std::abs(star.log() - outer.stretch.log()));
+  const double step = 0.02 * guess + std::numeric_limits<double>::denorm_min();
+  // Beyond |φ*| ≈ 700, cosh φ* overflows; H has long turned positive there.
+  const double d_max = std::max(guess, 700.0 - direction * outer.rapidity);
   double lo = 0.0, hi = guess;
-  if (g(guess) > 0.0) {
-    const Solved<double> below = expand_bracket(g, guess, -1, 0.0, guess, step);
-    if (below.ok()) lo = below.value;
+  const double at_guess = g(guess);
+  if (std::isnan(at_guess)) return failure();
+  if (at_guess == 0.0) return at(guess);
+  if (at_guess > 0.0) {
+    for (int k = 0; k < 1100; ++k) {  // tighten from below; g(0) < 0 closes the bracket anyway
+      const double d = guess - std::ldexp(step, k);
+      if (!(d > 0.0)) break;
+      const double value = g(d);
+      if (std::isnan(value)) return failure();
+      if (value == 0.0) return at(d);
+      if (value < 0.0) {
+        lo = d;
+        break;
+      }
+      hi = d;
+    }
   } else {
-    lo = guess;
-    const Solved<double> above = expand_bracket(g, guess, +1, guess, 1.0e3, step);
-    if (!above.ok()) return above;
-    hi = above.value;
+    bool found = false;
+    for (int k = 0; k < 1100 && !found; ++k) {
+      const double d = std::min(guess + std::ldexp(step, k), d_max);
+      const double value = g(d);
+      if (std::isnan(value)) return failure();
+      if (value == 0.0) return at(d);
+      if (value > 0.0) {
+        hi = d;
+        found = true;
+      } else {
+        lo = d;
+        if (d == d_max) break;
+      }
+    }
+    if (!found) return failure();
   }
-  const Solved<double> d = g(lo) == 0.0 ? Solved<double>{lo, Status::ok} : find_root(g, lo, hi);
+  const auto checked = [&](double d) {
+    const double value = g(d);
+    return std::isfinite(value) ? succeeded<double>(value) : failure();
+  };
+  // The answer φ_outer ± d is a double: d finer than its ulp, ε |φ_outer|, does not change it
+  // (and in a weak shock H's round-off would leave Brent bisecting to get there).
+  const Outcome<double> d =
+      find_root(checked, lo, hi, m, std::numeric_limits<double>::epsilon() * std::abs(outer.rapidity));
   if (!d.ok()) return d;
-  return Solved<double>{outer.rapidity + direction * d.value, Status::ok};
+  return at(d.value);
 }
 
-/// The star state on a wave curve given the star stretch (rather than pressure).
-WaveCurvePoint point_at_stretch(const WaveCurve& curve, Stretch star) {
+/// The star rapidity on a wave curve at a star stretch: across a shock from the jump
+/// conditions; across a fan or a linearly degenerate jump from the invariant carried across
+/// it, J+ = φ + Ψ across a C− wave (left side), J− = φ − Ψ across a C+ wave (right side).
+Outcome<double> star_rapidity(const WaveCurve& curve, Stretch star) {
   const Material& m = curve.material();
-  const State& st = curve.state();
-  const double sign = curve.side() == Side::left ? -1.0 : 1.0;
-  double jump;  // |rapidity change| with sign: positive when the star is compressed relative to the side
   const int family = curve.side() == Side::left ? -1 : +1;
-  if (wave_is_shock(m, st, star, family)) {
-    const Solved<double> rapidity = shock_star_rapidity(m, st, star, family);
-    if (!rapidity.ok()) return WaveCurvePoint{0.0, star, rapidity.status};
-    return WaveCurvePoint{rapidity.value, star, Status::ok};
-  } else {
-    // Invariant of the other family is carried across: Ψ* − Ψ_side.
-    jump = m.riemann_psi(star) - (curve.side() == Side::left ? curve.invariant() - st.rapidity
-                                                              : st.rapidity - curve.invariant());
-  }
-  return WaveCurvePoint{st.rapidity + sign * jump, star, Status::ok};
+  if (wave_is_shock(m, curve.state(), star, family)) return shock_star_rapidity(m, curve.state(), star, family);
+  const double psi = m.riemann_psi(star);
+  return succeeded<double>(curve.side() == Side::left ? curve.invariant() - psi : curve.invariant() + psi);
 }
 
-/// f(z) = φ*_L − φ*_R for a left star stretch z (ln s); increasing in z.
-struct Mismatch {
-  const WaveCurve* left;
-  const WaveCurve* right;
-  double operator()(double z) const {
-    const Stretch star_left = Stretch::from_log(z);
-    const double p = left->material().pressure(star_left);
-    const WaveCurvePoint a = point_at_stretch(*left, star_left);
-    const WaveCurvePoint b = right->at_pressure(p);
-    if (!b.ok()) return p > right->pressure() ? -kHuge : kHuge;
-    return std::clamp(a.rapidity - b.rapidity, -kHuge, kHuge);
+/// The limit of the star rapidity on a wave curve as the star state reaches an end of its
+/// material's range: its value at a finite end; for a linearly degenerate material, from the
+/// invariant, J+ − Ψ_end (left) or J− + Ψ_end (right), ±inf if Ψ is unbounded; NaN (not known)
+/// for a genuinely nonlinear material whose range has no end there.
+Outcome<double> curve_limit(const WaveCurve& curve, End end) {
+  const Material& m = curve.material();
+  const StretchRange range = m.admissible();
+  const double log_end = end == End::compression ? range.log_min : range.log_max;
+  if (std::isfinite(log_end)) return star_rapidity(curve, Stretch::from_log(log_end));
+  if (!m.linearly_degenerate()) return succeeded<double>(kNaN);
+  const double psi_end = end == End::compression ? m.psi_max() : m.psi_min();
+  return succeeded<double>(curve.side() == Side::left ? curve.invariant() - psi_end : curve.invariant() + psi_end);
+}
+
+/// The star rapidity on a wave curve at pressure p, the ends of the curve included: at (or by
+/// round-off beyond) max_pressure its limit in compression, at max_tension in tension.
+Outcome<double> rapidity_at_pressure(const WaveCurve& curve, double p) {
+  const Material& m = curve.material();
+  if (p == curve.pressure()) return succeeded<double>(curve.state().rapidity);
+  if (p >= m.max_pressure()) return curve_limit(curve, End::compression);
+  if (p <= m.max_tension()) return curve_limit(curve, End::tension);
+  const Solved<Stretch> star = m.stretch_at_pressure(p);
+  if (!star.ok()) {
+    if (star.status == Status::out_of_range && at_pressure_limit(m, p))
+      return curve_limit(curve, p > curve.pressure() ? End::compression : End::tension);
+    return numerical_failure<double>(star.status, kPressureInverse, m);
   }
+  return star_rapidity(curve, star.value);
+}
+
+/// The star state on a wave curve at pressure p: out_of_range at or beyond the material's
+/// limits (or within round-off of one), any other failure a numerical one.
+Outcome<State> state_at_pressure(const WaveCurve& curve, double p) {
+  const Material& m = curve.material();
+  if (p == curve.pressure()) return succeeded<State>(curve.state());
+  const Solved<Stretch> star = m.stretch_at_pressure(p);
+  if (!star.ok()) {
+    if (star.status == Status::out_of_range && at_pressure_limit(m, p))
+      return Outcome<State>{State{}, Status::out_of_range, kPressureInverse, &m};
+    return numerical_failure<State>(star.status, kPressureInverse, m);
+  }
+  const Outcome<double> rapidity = star_rapidity(curve, star.value);
+  if (!rapidity.ok()) return rapidity.as<State>();
+  return succeeded<State>(State{rapidity.value, star.value});
+}
+
+/// ln s at which the material's pressure is p, the ends of its range included.
+Outcome<double> log_stretch_at_pressure(const Material& m, double p) {
+  if (p >= m.max_pressure()) return succeeded<double>(m.admissible().log_min);
+  if (p <= m.max_tension()) return succeeded<double>(m.admissible().log_max);
+  const Solved<Stretch> s = m.stretch_at_pressure(p);
+  if (!s.ok()) return numerical_failure<double>(s.status, kPressureInverse, m);
+  return succeeded<double>(s.value.log());
+}
+
+/// Ψ at which the material's pressure is p, the ends of its range included.
+Outcome<double> psi_at_pressure(const Material& m, double p) {
+  if (p >= m.max_pressure()) return succeeded<double>(m.psi_max());
+  if (p <= m.max_tension()) return succeeded<double>(m.psi_min());
+  const Outcome<double> log_s = log_stretch_at_pressure(m, p);
+  if (!log_s.ok()) return log_s;
+  return succeeded<double>(m.riemann_psi(Stretch::from_log(log_s.value)));
+}
+
+/// The left star stretch z = ln s*_L of a Riemann problem ranges over [lo, hi]: from where the
+/// first side is crushed (reaches its largest pressure) to where the first reaches its largest
+/// tension, or where the pressure falls to the minimum the meeting point carries (they part).
+struct Domain {
+  double lo = -kInf, hi = kInf;
+  Side lo_limit = Side::left;  ///< whose range ends at lo
+  Side hi_limit = Side::left;  ///< whose range ends at hi, unless parting
+  bool parting = false;        ///< at hi the pressure is parting_pressure
+  double parting_pressure = -kInf;
 };
 
-RiemannSolution collapse(double demanded_psi, double limit_psi, double impact_rapidity) {
+Outcome<Domain> riemann_domain(const Material& left, const Material& right, double min_pressure) {
+  Domain d;
+  if (right.max_pressure() < left.max_pressure()) {
+    const Outcome<double> lo = log_stretch_at_pressure(left, right.max_pressure());
+    if (!lo.ok()) return lo.as<Domain>();
+    d.lo = lo.value;
+    d.lo_limit = Side::right;
+  } else {
+    d.lo = left.admissible().log_min;
+  }
+  Outcome<double> hi = succeeded<double>(left.admissible().log_max);
+  if (min_pressure >= std::max(left.max_tension(), right.max_tension())) {
+    hi = log_stretch_at_pressure(left, min_pressure);
+    d.parting = true;
+    d.parting_pressure = min_pressure;
+  } else if (right.max_tension() > left.max_tension()) {
+    hi = log_stretch_at_pressure(left, right.max_tension());
+    d.hi_limit = Side::right;
+  }
+  if (!hi.ok()) return hi.as<Domain>();
+  d.hi = hi.value;
+  return succeeded<Domain>(d);
+}
+
+/// f(z) = φ*_L − φ*_R for the left star stretch z = ln s*_L in the domain; increasing in z. At an
+/// end of the domain (±inf included) it is the limit of f there, possibly ±inf, or NaN where no
+/// closed form is known; inside, a value that is not finite is a failure.
+class Mismatch {
+ public:
+  Mismatch(const WaveCurve& left, const WaveCurve& right, const Domain& domain)
+      : left_(&left), right_(&right), domain_(domain) {}
+
+  [[nodiscard]] Outcome<double> operator()(double z) const {
+    const Material& ml = left_->material();
+    const Material& mr = right_->material();
+    const bool at_lo = z == domain_.lo, at_hi = z == domain_.hi;
+    double p;
+    Outcome<double> left;
+    if (std::isinf(z)) {
+      const End end = z < 0.0 ? End::compression : End::tension;
+      p = end == End::compression ? ml.max_pressure() : ml.max_tension();
+      left = curve_limit(*left_, end);
+    } else {
+      const Stretch star = Stretch::from_log(z);
+      if (at_lo && domain_.lo_limit == Side::right) {
+        p = mr.max_pressure();
+      } else if (at_hi && domain_.parting) {
+        p = domain_.parting_pressure;
+      } else if (at_hi && domain_.hi_limit == Side::right) {
+        p = mr.max_tension();
+      } else {
+        p = ml.pressure(star);
+      }
+      left = star_rapidity(*left_, star);
+    }
+    if (!left.ok()) return left;
+    if (std::isnan(p)) return numerical_failure<double>(Status::not_converged, kBeyondDoubles, ml);
+    const Outcome<double> right = rapidity_at_pressure(*right_, p);
+    if (!right.ok()) return right;
+    const double value = left.value - right.value;
+    if (!at_lo && !at_hi && !std::isfinite(value))
+      return numerical_failure<double>(Status::not_converged, kBeyondDoubles, ml);
+    return succeeded<double>(value);
+  }
+
+ private:
+  const WaveCurve* left_;
+  const WaveCurve* right_;
+  Domain domain_;
+};
+
+/// A numerical failure as a solution (out_of_range never: only the limit analysis reports that).
+template <class T>
+RiemannSolution failed(const Outcome<T>& outcome) {
+  RiemannSolution s;
+  s.status = outcome.status == Status::out_of_range ? Status::not_converged : outcome.status;
+  s.failure = outcome.what;
+  s.material = outcome.material;
+  return s;
+}
+
+/// No classical solution: material m would leave its admissible range at `end` (crushed, or
+/// pulled beyond its largest tension), where Ψ would have to be demanded_psi (NaN if not known).
+RiemannSolution beyond_range(const Material& m, End end, double demanded_psi, double impact_rapidity) {
   RiemannSolution s;
   s.status = Status::out_of_range;
+  s.material = &m;
+  s.in_tension = end == End::tension;
+  s.limit_psi = end == End::compression ? m.psi_max() : m.psi_min();
   s.demanded_psi = demanded_psi;
-  s.limit_psi = limit_psi;
   s.impact_rapidity = impact_rapidity;
   return s;
 }
 
-/// Star pressure on a wave curve whose star stretch is fixed by Ψ (LD waves, rarefactions).
+/// The sides part at min_pressure: each relaxes to it through its own wave.
 RiemannSolution parted_pair(const WaveCurve& left, const WaveCurve& right, double min_pressure) {
+  const Outcome<State> a = state_at_pressure(left, min_pressure);
+  if (!a.ok()) return failed(a);
+  const Outcome<State> b = state_at_pressure(right, min_pressure);
+  if (!b.ok()) return failed(b);
   RiemannSolution out;
   out.parted = true;
   out.pressure = min_pressure;
-  const WaveCurvePoint a = left.at_pressure(min_pressure);
-  const WaveCurvePoint b = right.at_pressure(min_pressure);
-  out.status = a.ok() && b.ok() ? Status::ok : Status::not_converged;
-  out.left = State{a.rapidity, a.stretch};
-  out.right = State{b.rapidity, b.stretch};
+  out.left = a.value;
+  out.right = b.value;
   return out;
+}
+
+/// Shortest decimal form that reads back to the same double (std::to_chars).
+std::string shortest(double v) {
+  std::array<char, 64> buffer{};
+  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
+  if (ec != std::errc()) return "?";
+  return std::string(buffer.data(), end);
 }
 
 }  // namespace
@@ -169,14 +479,14 @@ WaveCurve::WaveCurve(const Material& material, const State& state, Side side)
       invariant_(side == Side::left ? state.rapidity + psi_ : state.rapidity - psi_) {}
 
 WaveCurvePoint WaveCurve::at_pressure(double p) const {
-  if (p == pressure_) return WaveCurvePoint{state_.rapidity, state_.stretch, Status::ok};
-  const Solved<Stretch> star = material_->stretch_at_pressure(p);
+  const Outcome<State> star = state_at_pressure(*this, p);
   if (!star.ok()) return WaveCurvePoint{0.0, Stretch{}, star.status};
-  return point_at_stretch(*this, star.value);
+  return WaveCurvePoint{star.value.rapidity, star.value.stretch, Status::ok};
 }
 
 RiemannSolution solve_riemann(const Material& left_material, const State& left, const Material& right_material,
                               const State& right, double min_pressure) {
+  const double impact = left.rapidity - right.rapidity;
   // One linearly degenerate material on both sides: the star state is closed form,
   // J+ from the left, J− from the right.
   if (&left_material == &right_material && left_material.linearly_degenerate()) {
@@ -185,81 +495,99 @@ RiemannSolution solve_riemann(const Material& left_material, const State& left, 
     const double j_minus = right.rapidity - m.riemann_psi(right.stretch);
     const double psi_star = 0.5 * (j_plus - j_minus);
     const double rapidity_star = 0.5 * (j_plus + j_minus);
-    if (psi_star >= m.psi_max()) return collapse(psi_star, m.psi_max(), left.rapidity - right.rapidity);
-    if (min_pressure > -kInf) {
-      const Solved<Stretch> parting = m.stretch_at_pressure(min_pressure);
-      if (parting.ok() && psi_star < m.riemann_psi(parting.value)) {
+    if (beyond_psi(m, psi_star, End::compression)) return beyond_range(m, End::compression, psi_star, impact);
+    if (min_pressure >= m.max_tension()) {
+      const Outcome<double> parting = psi_at_pressure(m, min_pressure);
+      if (!parting.ok()) return failed(parting);
+      if (psi_star < parting.value) {
         return parted_pair(WaveCurve(m, left, Side::left), WaveCurve(m, right, Side::right), min_pressure);
       }
     }
+    if (beyond_psi(m, psi_star, End::tension)) return beyond_range(m, End::tension, psi_star, impact);
     const Solved<Stretch> star = m.stretch_at_psi(psi_star);
-    if (!star.ok()) return RiemannSolution{star.status, false, 0.0, {}, {}, psi_star, m.psi_max()};
+    if (!star.ok()) return failed(numerical_failure<Stretch>(star.status, kPsiInverse, m));
     RiemannSolution out;
     out.pressure = m.pressure(star.value);
     out.left = out.right = State{rapidity_star, star.value};
     return out;
   }
 
+  // General: Brent on the left star stretch z = ln s*_L, f(z) = φ*_L − φ*_R increasing, over the
+  // stretches at which both sides can take the star pressure.
   const WaveCurve lc(left_material, left, Side::left);
   const WaveCurve rc(right_material, right, Side::right);
-  // General: Brent on the left star stretch z = ln s*_L, f(z) = φ*_L − φ*_R increasing.
-  const Mismatch f{&lc, &rc};
-  const StretchRange range = left_material.admissible();
-  double z_hi = range.log_max;
-  if (min_pressure > -kInf) {
-    const Solved<Stretch> parting = left_material.stretch_at_pressure(min_pressure);
-    if (parting.ok()) {
-      z_hi = parting.value.log();
-      if (f(z_hi) < 0.0) return parted_pair(lc, rc, min_pressure);
-      if (f(z_hi) == 0.0) return parted_pair(lc, rc, min_pressure);
-    }
+  const Outcome<Domain> domain = riemann_domain(left_material, right_material, min_pressure);
+  if (!domain.ok()) return failed(domain);
+  const Domain& d = domain.value;
+  const Mismatch f(lc, rc, d);
+  if (d.parting) {
+    // If even at the parting pressure the left side does not catch up with the right, they part.
+    const Outcome<double> at_parting = f(d.hi);
+    if (!at_parting.ok()) return failed(at_parting);
+    if (at_parting.value <= 0.0) return parted_pair(lc, rc, min_pressure);
   }
-  // Start from the left state, or for one material on both sides from the star state
-  // the rarefaction curves would give (exact for weak waves), with a step to match.
-  double start = std::min(left.stretch.log(), z_hi);
+  // Start from the left state, or for one material on both sides from the star state the
+  // rarefaction curves would give (exact for weak waves), with a step to match; the guess is
+  // only a guess, so a failed one is not used.
+  const auto inside = [&d](double z) { return std::max(d.lo, std::min(z, d.hi)); };
+  double start = inside(left.stretch.log());
   double first_step = 0.5;
   if (&left_material == &right_material) {
     const double psi_guess = 0.5 * (lc.invariant() - rc.invariant());
     const Solved<Stretch> guess = left_material.stretch_at_psi(std::min(psi_guess, left_material.psi_max()));
     if (guess.ok()) {
       first_step = 1e-3 + 0.05 * std::abs(guess.value.log() - start);
-      start = std::min(guess.value.log(), z_hi);
+      start = inside(guess.value.log());
     }
   }
-  double lo = start, hi = start;
-  const double f_start = f(start);
-  if (f_start == 0.0) {
-    lo = hi = start;
-  } else if (f_start > 0.0) {
-    hi = start;
-    const Solved<double> b = expand_bracket(f, start, -1, range.log_min, z_hi, first_step);
-    if (!b.ok()) {
-      // Even at the largest reachable compression the left state outruns the right.
-      const Material& weaker = left_material.psi_max() <= right_material.psi_max() ? left_material : right_material;
-      return collapse(std::numeric_limits<double>::quiet_NaN(), weaker.psi_max(), left.rapidity - right.rapidity);
+  const Outcome<double> at_start = f(start);
+  if (!at_start.ok()) return failed(at_start);
+  if (std::isnan(at_start.value))
+    return failed(numerical_failure<double>(Status::not_converged, kBeyondDoubles, left_material));
+  double z = start;
+  if (at_start.value != 0.0) {
+    // Compress the left star (go down in z) while the left outruns the right, else relax it.
+    const double dir = at_start.value > 0.0 ? -1.0 : 1.0;
+    const Outcome<Reach> reach = reach_sign(f, start, dir, first_step, dir < 0.0 ? d.lo : d.hi, left_material);
+    if (!reach.ok()) return failed(reach);
+    if (!reach.value.found) {
+      // f keeps its sign to the end of the domain: the side whose range ends there would have to
+      // leave it. On the invariant's curve it would need Ψ = Ψ_end + f(end) (J+ − φ*_R for the
+      // left, φ*_L − J− for the right); behind a shock that Ψ is not defined.
+      const End end = dir < 0.0 ? End::compression : End::tension;
+      const WaveCurve& limiting = (dir < 0.0 ? d.lo_limit : d.hi_limit) == Side::left ? lc : rc;
+      const Material& m = limiting.material();
+      const double psi_end = end == End::compression ? m.psi_max() : m.psi_min();
+      const double demanded = m.linearly_degenerate() && std::isfinite(psi_end) ? psi_end + reach.value.value : kNaN;
+      // Unless f vanishes at a range end that is itself a state (a finite stretch): the root.
+      const StretchRange range = m.admissible();
+      const bool end_is_state = std::isfinite(end == End::compression ? range.log_min : range.log_max);
+      if (!(reach.value.value == 0.0 && std::isfinite(reach.value.z) && end_is_state))
+        return beyond_range(m, end, demanded, impact);
+      z = reach.value.z;
+    } else {
+      const double a = reach.value.previous, b = reach.value.z;
+      const Outcome<double> root = find_root(f, std::min(a, b), std::max(a, b), left_material);
+      if (!root.ok()) return failed(root);
+      z = root.value;
     }
-    lo = b.value;
-  } else {
-    lo = start;
-    const Solved<double> b = expand_bracket(f, start, +1, range.log_min, z_hi, first_step);
-    if (!b.ok()) return RiemannSolution{Status::no_bracket, false, 0.0, {}, {}, 0.0, 0.0};
-    hi = b.value;
-  }
-  double z = lo;
-  if (lo != hi) {
-    const Solved<double> root = find_root(f, lo, hi);
-    if (!root.ok()) return RiemannSolution{root.status, false, 0.0, {}, {}, 0.0, 0.0};
-    z = root.value;
   }
   const Stretch star_left = Stretch::from_log(z);
   RiemannSolution out;
   out.pressure = left_material.pressure(star_left);
-  const WaveCurvePoint a = point_at_stretch(lc, star_left);
-  const WaveCurvePoint b = rc.at_pressure(out.pressure);
-  if (!b.ok()) return RiemannSolution{b.status, false, 0.0, {}, {}, 0.0, 0.0};
-  const double rapidity = 0.5 * (a.rapidity + b.rapidity);
+  const Outcome<double> a = star_rapidity(lc, star_left);
+  if (!a.ok()) return failed(a);
+  const Outcome<State> b = state_at_pressure(rc, out.pressure);
+  if (!b.ok()) {
+    if (b.status != Status::out_of_range) return failed(b);
+    // The root lies within round-off of the right side's limit: it is crushed (or pulled) to it.
+    const End end = out.pressure > rc.pressure() ? End::compression : End::tension;
+    const double demanded = right_material.linearly_degenerate() ? a.value - rc.invariant() : kNaN;
+    return beyond_range(right_material, end, demanded, impact);
+  }
+  const double rapidity = 0.5 * (a.value + b.value.rapidity);
   out.left = State{rapidity, star_left};
-  out.right = State{rapidity, b.stretch};
+  out.right = State{rapidity, b.value.stretch};
   return out;
 }
 
@@ -271,41 +599,64 @@ RiemannSolution solve_wall(const Material& m, const State& state, Side side, dou
   // The star on the rarefaction curve: Ψ* from the invariant carried across the wave. It is
   // the answer for a linearly degenerate material and for a fan.
   const double psi_star = side == Side::left ? curve.invariant() - wall_rapidity : wall_rapidity - curve.invariant();
+  const bool in_range = !beyond_psi(m, psi_star, End::compression) && !beyond_psi(m, psi_star, End::tension);
   const Solved<Stretch> on_curve =
-      psi_star < m.psi_max() ? m.stretch_at_psi(psi_star) : Solved<Stretch>::failure(Status::out_of_range);
+      in_range ? m.stretch_at_psi(psi_star) : Solved<Stretch>::failure(Status::out_of_range);
+  if (in_range && !on_curve.ok()) return failed(numerical_failure<Stretch>(on_curve.status, kPsiInverse, m));
   const bool jump_or_fan =
       m.linearly_degenerate() || (on_curve.ok() && !wave_is_shock(m, state, on_curve.value, family));
   Stretch star;
   if (jump_or_fan) {
-    if (psi_star >= m.psi_max()) return collapse(psi_star, m.psi_max(), impact);
+    if (beyond_psi(m, psi_star, End::compression)) return beyond_range(m, End::compression, psi_star, impact);
     // A wall that cannot pull lets go before the material would reach that tension (the
     // rigid fluid cannot even be put in tension: its curve ends at p = 0).
-    if (min_pressure > -kInf) {
-      const Solved<Stretch> parting = m.stretch_at_pressure(min_pressure);
-      if (parting.ok() && psi_star < m.riemann_psi(parting.value)) return solve_free_end(m, state, side);
+    if (min_pressure >= m.max_tension()) {
+      const Outcome<double> parting = psi_at_pressure(m, min_pressure);
+      if (!parting.ok()) return failed(parting);
+      if (psi_star < parting.value) return solve_free_end(m, state, side);
     }
-    if (!on_curve.ok()) return RiemannSolution{Status::not_converged, false, 0.0, {}, {}, psi_star, m.psi_max()};
+    if (beyond_psi(m, psi_star, End::tension)) return beyond_range(m, End::tension, psi_star, impact);
     star = on_curve.value;
   } else {
     // A shock: solve φ*(z) = φ_wall on the wave curve for the star stretch z = ln s*; the
     // mismatch g grows with z (the less compressed the star, the more of the side's motion
     // towards the wall it keeps), so its sign at the side's own stretch says which way to go.
-    const auto g = [&curve, wall_rapidity, side](double z) {
-      const WaveCurvePoint pt = point_at_stretch(curve, Stretch::from_log(z));
-      return side == Side::left ? pt.rapidity - wall_rapidity : wall_rapidity - pt.rapidity;
+    const StretchRange range = m.admissible();
+    const auto g = [&](double z) -> Outcome<double> {
+      const bool end = z == range.log_min || z == range.log_max;
+      const Outcome<double> rapidity = std::isinf(z) ? curve_limit(curve, z < 0.0 ? End::compression : End::tension)
+                                                     : star_rapidity(curve, Stretch::from_log(z));
+      if (!rapidity.ok()) return rapidity;
+      const double value = side == Side::left ? rapidity.value - wall_rapidity : wall_rapidity - rapidity.value;
+      if (!end && !std::isfinite(value)) return numerical_failure<double>(Status::not_converged, kBeyondDoubles, m);
+      return succeeded<double>(value);
     };
     const double z_side = state.stretch.log();
-    const StretchRange range = m.admissible();
-    const int direction = g(z_side) > 0.0 ? -1 : +1;
-    const Solved<double> far = expand_bracket(g, z_side, direction, range.log_min, range.log_max);
-    if (!far.ok()) {
-      if (direction < 0) return collapse(std::numeric_limits<double>::quiet_NaN(), m.psi_max(), impact);
-      return RiemannSolution{far.status, false, 0.0, {}, {}, 0.0, 0.0};
+    if (impact == 0.0) {
+      star = state.stretch;
+    } else {
+      const double dir = impact > 0.0 ? -1.0 : 1.0;
+      const Outcome<Reach> reach = reach_sign(g, z_side, dir, 0.5, dir < 0.0 ? range.log_min : range.log_max, m);
+      if (!reach.ok()) return failed(reach);
+      if (!reach.value.found) {
+        // g vanishing at a range end that is a finite stretch is a root; otherwise no state of
+        // the material meets the wall.
+        if (reach.value.value == 0.0 && std::isfinite(reach.value.z)) {
+          star = Stretch::from_log(reach.value.z);
+        } else if (dir < 0.0) {
+          return beyond_range(m, End::compression, kNaN, impact);
+        } else if (min_pressure >= m.max_tension()) {
+          return solve_free_end(m, state, side);
+        } else {
+          return beyond_range(m, End::tension, kNaN, impact);
+        }
+      } else {
+        const double a = reach.value.previous, b = reach.value.z;
+        const Outcome<double> root = find_root(g, std::min(a, b), std::max(a, b), m);
+        if (!root.ok()) return failed(root);
+        star = Stretch::from_log(root.value);
+      }
     }
-    const Solved<double> root =
-        direction < 0 ? find_root(g, far.value, z_side) : find_root(g, z_side, far.value);
-    if (!root.ok()) return RiemannSolution{root.status, false, 0.0, {}, {}, 0.0, 0.0};
-    star = Stretch::from_log(root.value);
   }
   RiemannSolution out;
   out.pressure = m.pressure(star);
@@ -318,12 +669,12 @@ RiemannSolution solve_wall(const Material& m, const State& state, Side side, dou
 RiemannSolution solve_free_end(const Material& m, const State& state, Side side) {
   const double p_free = std::max(0.0, m.cavitation_pressure());
   const WaveCurve curve(m, state, side);
+  const Outcome<State> pt = state_at_pressure(curve, p_free);
+  if (!pt.ok()) return failed(pt);
   RiemannSolution out;
   out.parted = true;
   out.pressure = p_free;
-  const WaveCurvePoint pt = curve.at_pressure(p_free);
-  out.status = pt.status;
-  out.left = out.right = State{pt.rapidity, pt.stretch};
+  out.left = out.right = pt.value;
   return out;
 }
 
@@ -340,28 +691,51 @@ double energy_density(const Material& m, const State& st) {
   return m.enthalpy_density(st.stretch) * s * ch - m.pressure(st.stretch) * s / ch;
 }
 
-void require_solved(const RiemannSolution& sol, const Material& m, double t, double x) {
+void require_solved(const RiemannSolution& sol, const Material& material, double t, double x) {
   if (sol.status == Status::ok) return;
-  std::ostringstream os;
-  os.precision(12);
+  const Material& m = sol.material != nullptr ? *sol.material : material;
+  const std::string model(m.model());
+  const std::string where = "at t = " + shortest(t) + ", x = " + shortest(x);
   if (sol.status != Status::out_of_range) {
-    os << "the Riemann problem at t = " << t << ", x = " << x << " could not be solved (" << to_string(sol.status)
-       << ")";
-    throw NumericalError(os.str());
+    std::string what =
+        "the Riemann problem " + where + " could not be solved (" + std::string(to_string(sol.status)) + ")";
+    if (!sol.failure.empty()) what += ": " + std::string(sol.failure) + " (material '" + model + "')";
+    throw NumericalError(what);
   }
-  os << "no classical solution at t = " << t << ", x = " << x << ": an impact at relative speed "
-     << std::tanh(sol.impact_rapidity) << " c would crush the material '" << m.model() << "' to zero length";
-  if (std::isfinite(sol.demanded_psi)) {
-    // Linearly degenerate: the compressed state would need Ψ = demanded ≥ Ψ_max; tanh Ψ is
-    // the impact speed relative to the compressed material (the wall's frame for a wall).
-    os << ": it demands an impact speed v = tanh(Psi) = " << std::tanh(sol.demanded_psi)
-       << " c relative to the compressed material, at or above the material's limit " << std::tanh(sol.limit_psi)
-       << " c";
+  // Ψ(s) = ∫_s^1 c_s dσ/σ: an unstrained bar meeting a wall at speed v comes to rest with
+  // Ψ = artanh v on the invariant's curve, so tanh Ψ_max is the largest impact speed it takes.
+  const StretchRange range = m.admissible();
+  const bool demanded_known = std::isfinite(sol.demanded_psi);
+  std::string what = "no classical solution " + where + ": ";
+  if (!sol.in_tension) {
+    what +=
+        "an impact at relative speed " + shortest(std::tanh(sol.impact_rapidity)) + " c would crush the material '" +
+        model + "' " +
+        (std::isfinite(range.log_min) ? "below its smallest admissible stretch s = " + shortest(std::exp(range.log_min))
+                                      : std::string("to zero length"));
+    if (demanded_known) {
+      what += ": it would need Psi = " + shortest(sol.demanded_psi) +
+              " (tanh Psi = " + shortest(std::tanh(sol.demanded_psi)) + " c), at or beyond";
+    } else {
+      what += ": beyond";
+    }
+    what += " its limit Psi_max = " + shortest(sol.limit_psi) +
+            " (tanh Psi_max = " + shortest(std::tanh(sol.limit_psi)) +
+            " c, the largest impact speed an unstrained bar of it takes against a wall)";
   } else {
-    os << " (its limit: impact speed " << std::tanh(sol.limit_psi) << " c relative to the compressed material)";
+    what +=
+        "sides separating at relative speed " + shortest(std::abs(std::tanh(sol.impact_rapidity))) +
+        " c would pull the material '" + model + "' " +
+        (std::isfinite(range.log_max) ? "beyond its largest admissible stretch s = " + shortest(std::exp(range.log_max))
+                                      : std::string("to infinite length"));
+    if (demanded_known)
+      what += ": it would need Psi = " + shortest(sol.demanded_psi) + ", at or beyond";
+    else
+      what += ": beyond";
+    what += " its limit Psi_min = " + shortest(sol.limit_psi) +
+            " (its largest tension, p = " + shortest(m.max_tension()) + ")";
   }
-  if (m.model() == "hooke") os << "; for hooke the limit is the wave speed V = " << std::tanh(sol.limit_psi) << " c";
-  throw InadmissibleError(os.str());
+  throw InadmissibleError(what);
 }
 
 bool wave_is_shock(const Material& m, const State& outer, Stretch star, int family) {
@@ -451,8 +825,8 @@ FrontSpeeds shock_speeds(const Material& m, const State& outer, const State& sta
     return characteristic_speeds(m, star, family);
   }
   // Label jump condition m [s/γ] = −[v]; the lab speed follows from dx = (s/γ) dX + v dt.
-  const double speed = -(std::tanh(star.rapidity) - std::tanh(outer.rapidity)) /
-                       (label_density(star) - label_density(outer));
+  const double speed =
+      -(std::tanh(star.rapidity) - std::tanh(outer.rapidity)) / (label_density(star) - label_density(outer));
   return FrontSpeeds{speed, std::tanh(outer.rapidity) + speed * label_density(outer)};
 }
 

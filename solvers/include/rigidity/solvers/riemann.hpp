@@ -20,6 +20,8 @@
 /// treated with a minimum pressure: if the sides would need less than that to stay
 /// together, they part, and each side relaxes through its own wave to that pressure.
 
+#include <string_view>
+
 #include "rigidity/material.hpp"
 #include "rigidity/status.hpp"
 
@@ -48,7 +50,8 @@ struct WaveCurvePoint {
 class WaveCurve {
  public:
   WaveCurve(const Material& material, const State& state, Side side);
-  /// The star state at pressure p. out_of_range beyond the material's limits.
+  /// The star state at pressure p. out_of_range beyond the material's limits; another failed
+  /// status (never a guessed state) if the material's inverse or the shock jump conditions fail.
   [[nodiscard]] WaveCurvePoint at_pressure(double p) const;
   [[nodiscard]] double pressure() const { return pressure_; }
   [[nodiscard]] const Material& material() const { return *material_; }
@@ -67,26 +70,34 @@ class WaveCurve {
 };
 
 /// The solution at the meeting point.
+///
+/// A failed status is never a number: out_of_range means the problem has no classical solution
+/// for a physical reason (a side would leave its material's admissible range: crushed, or in a
+/// bonded pull stretched beyond it), with `material`, `impact_rapidity` and `limit_psi` (and
+/// `demanded_psi` where known) filled in; any other status is a numerical failure, with
+/// `failure` naming the computation that failed (and `material` the material it concerned).
 struct RiemannSolution {
-  Status status = Status::ok;   ///< out_of_range: no classical solution (crushed beyond the limit)
-  bool parted = false;          ///< the sides separate (pressure would fall below the minimum)
-  double pressure = 0.0;        ///< p* (the minimum pressure if parted)
-  State left, right;            ///< star states next to the left and the right state
-  double demanded_psi = 0.0;    ///< with out_of_range: the Ψ a linearly degenerate solution would need (NaN if not known)
-  double limit_psi = 0.0;       ///< with out_of_range: the material's Ψ_max
-  double impact_rapidity = 0.0; ///< with out_of_range: rapidity of the left state relative to the right (or the wall)
+  Status status = Status::ok;    ///< out_of_range: no classical solution (a side leaves its material's range)
+  bool parted = false;           ///< the sides separate (pressure would fall below the minimum)
+  double pressure = 0.0;         ///< p* (the minimum pressure if parted)
+  State left, right;             ///< star states next to the left and the right state
+  double demanded_psi = 0.0;     ///< with out_of_range: the Ψ the limiting side would need (NaN if not known)
+  double limit_psi = 0.0;        ///< with out_of_range: that material's Ψ_max (Ψ_min if in_tension)
+  double impact_rapidity = 0.0;  ///< with out_of_range: rapidity of the left state relative to the right (or the wall)
+  const Material* material = nullptr;  ///< if failed: the material whose range is left, or that failed
+  bool in_tension = false;             ///< with out_of_range: the range is left in tension (pulled apart), not crushed
+  std::string_view failure;            ///< with a numerical failure: the computation that failed (static text)
 };
 
 /// Two states meeting. min_pressure: -inf for a bonded interface; 0 for a push-only
 /// contact; a fluid's cavitation pressure.
 [[nodiscard]] RiemannSolution solve_riemann(const Material& left_material, const State& left,
-                                            const Material& right_material, const State& right,
-                                            double min_pressure);
+                                            const Material& right_material, const State& right, double min_pressure);
 
 /// A state against a wall or piston moving at rapidity `wall_rapidity`; `side` is the
 /// side the material is on (Side::left: the wall is on its right).
-[[nodiscard]] RiemannSolution solve_wall(const Material& material, const State& state, Side side,
-                                         double wall_rapidity, double min_pressure);
+[[nodiscard]] RiemannSolution solve_wall(const Material& material, const State& state, Side side, double wall_rapidity,
+                                         double min_pressure);
 
 /// A state at a free end (p = 0, or the material's cavitation pressure if higher).
 [[nodiscard]] RiemannSolution solve_free_end(const Material& material, const State& state, Side side);
@@ -119,9 +130,11 @@ struct FrontSpeeds {
 [[nodiscard]] double momentum_density(const Material& material, const State& state);
 [[nodiscard]] double energy_density(const Material& material, const State& state);
 
-/// Does nothing for a solved problem; otherwise throws InadmissibleError (no classical
-/// solution: the message names the impact speed and the material's limit, for hooke
-/// its wave speed V) or NumericalError, naming the place (t, x) of the interaction.
+/// Does nothing for a solved problem; otherwise throws InadmissibleError for out_of_range (no
+/// classical solution: the message names the impact speed, the material (solution.material, else
+/// `material`) and its limit, tanh Ψ_max, the largest impact speed an unstrained bar of it takes
+/// against a wall) or NumericalError for any other status (naming the computation that failed),
+/// naming the place (t, x) of the interaction. Numbers are printed in shortest round-trip form.
 void require_solved(const RiemannSolution& solution, const Material& material, double t, double x);
 
 /// A shock between an outer state and a star state (same material), family -1 or +1.
