@@ -115,7 +115,6 @@ class Scheme {
   // ---- set-up -----------------------------------------------------------------------
   void build_cells();
   void build_walls();
-  void collect_sample_times();
 
   // ---- one step -----------------------------------------------------------------------
   [[nodiscard]] double stable_step();
@@ -194,7 +193,7 @@ class Scheme {
   std::vector<Junction> junctions_;
   Wall walls_[2];
 
-  std::vector<SampleTime> samples_;
+  SampleSchedule samples_{scene_};
   RunResult result_;
   std::vector<RunEvent> pending_events_;
   double impulse_ = 0.0, wall_work_ = 0.0;
@@ -297,7 +296,6 @@ void Scheme::build_walls() {
   }
 }
 
-void Scheme::collect_sample_times() { samples_ = sample_times(scene_); }
 
 // =====================================================================================
 // one step
@@ -680,7 +678,7 @@ double Scheme::quantity(Quantity q, int c, double X, double x) const {
 
 void Scheme::sample(const SampleTime& st) {
   const double t = st.t;
-  if (st.kind == 0) {
+  if (st.kind == SampleTime::Kind::probe) {
     const ProbeDecl& probe = scene_.outputs.probes[st.index];
     const int body = probe_body(scene_, probe);
     double x = 0.0;
@@ -741,7 +739,6 @@ RunResult Scheme::run() {
   const auto start = std::chrono::steady_clock::now();
   build_cells();
   build_walls();
-  collect_sample_times();
   result_.solver = "finite_volume";
   for (const BodyDecl& b : scene_.bodies) result_.body_names.push_back(b.name);
   totals(result_.conservation.energy_initial, result_.conservation.momentum_initial);
@@ -749,14 +746,13 @@ RunResult Scheme::run() {
 
   const double t_end = scene_.t_end;
   double t = 0.0;
-  std::size_t next_sample = 0;
   for (;;) {
-    while (next_sample < samples_.size() && samples_[next_sample].t <= t) sample(samples_[next_sample++]);
+    while (samples_.next_time() <= t) sample(samples_.pop());
     if (t >= t_end) break;
     if (recorder_.poll(t, -1, result_.stats.interactions)) break;  // Ctrl-C; progress
     // The next time a step must land on.
     double target = t_end;
-    if (next_sample < samples_.size()) target = std::min(target, samples_[next_sample].t);
+    target = std::min(target, samples_.next_time());
     for (const Wall& w : walls_)
       if (w.present) target = std::min(target, w.next_change());
 
@@ -800,7 +796,7 @@ RunResult Scheme::run() {
   }
 
   // Any samples beyond t_end (none if the run stopped early: its state is at t).
-  for (; next_sample < samples_.size() && !recorder_.stopped(); ++next_sample) sample(samples_[next_sample]);
+  while (!samples_.done() && !recorder_.stopped()) sample(samples_.pop());
   release_events(kInf);
 
   // Close the books at t_end.

@@ -6,20 +6,47 @@
 
 namespace rigidity {
 
-std::vector<SampleTime> sample_times(const Scene& scene) {
+SampleSchedule::SampleSchedule(const Scene& scene) : t_end_(scene.t_end) {
   constexpr double kEps = std::numeric_limits<double>::epsilon();
-  std::vector<SampleTime> samples;
-  const double t_end = scene.t_end;
-  for (std::size_t i = 0; i < scene.outputs.probes.size(); ++i) {
-    const double every = scene.outputs.probes[i].every;
-    const long count = static_cast<long>(std::floor(t_end / every * (1.0 + 4.0 * kEps)));
-    for (long k = 0; k <= count; ++k)
-      samples.push_back(SampleTime{std::min(static_cast<double>(k) * every, t_end), 0, static_cast<int>(i)});
+  for (const ProbeDecl& probe : scene.outputs.probes) {
+    Stream s;
+    s.every = probe.every;
+    s.count = static_cast<long>(std::floor(t_end_ / probe.every * (1.0 + 4.0 * kEps))) + 1;
+    probes_.push_back(std::move(s));
   }
-  for (std::size_t i = 0; i < scene.outputs.snapshots.size(); ++i)
-    for (double t : scene.outputs.snapshots[i].times) samples.push_back(SampleTime{t, 1, static_cast<int>(i)});
-  std::stable_sort(samples.begin(), samples.end(), [](const SampleTime& a, const SampleTime& b) { return a.t < b.t; });
-  return samples;
+  for (const SnapshotDecl& snapshot : scene.outputs.snapshots) {
+    Stream s;
+    s.times = snapshot.times;
+    std::stable_sort(s.times.begin(), s.times.end());
+    s.count = static_cast<long>(s.times.size());
+    snapshots_.push_back(std::move(s));
+  }
+  find_next();
+}
+
+double SampleSchedule::time_of(const Stream& s) const {
+  if (s.taken >= s.count) return kNever;
+  if (s.every == 0.0) return s.times[static_cast<std::size_t>(s.taken)];
+  return std::min(static_cast<double>(s.taken) * s.every, t_end_);
+}
+
+void SampleSchedule::find_next() {
+  // Outputs are few: a scan finds the earliest, the first in scene order at a tie, probes
+  // before snapshots.
+  next_ = SampleTime{kNever, SampleTime::Kind::probe, -1};
+  for (std::size_t i = 0; i < probes_.size(); ++i)
+    if (const double t = time_of(probes_[i]); t < next_.t) next_ = {t, SampleTime::Kind::probe, static_cast<int>(i)};
+  for (std::size_t i = 0; i < snapshots_.size(); ++i)
+    if (const double t = time_of(snapshots_[i]); t < next_.t)
+      next_ = {t, SampleTime::Kind::snapshot, static_cast<int>(i)};
+}
+
+SampleTime SampleSchedule::pop() {
+  const SampleTime taken = next_;
+  auto& streams = taken.kind == SampleTime::Kind::probe ? probes_ : snapshots_;
+  ++streams[static_cast<std::size_t>(taken.index)].taken;
+  find_next();
+  return taken;
 }
 
 int probe_body(const Scene& scene, const ProbeDecl& probe) {

@@ -242,8 +242,9 @@ TEST_F(CliTest, CtrlCStopsARunCleanlyWithTheOutputsSoFarAndExits130) {
       if (entry.path().filename().string().rfind("run.tmp-", 0) == 0) return true;
     return false;
   };
+  // A second more lets it advance past t = 0 even under a sanitizer on a loaded machine.
   for (int i = 0; i < 200 && !started(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(25));
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
   ASSERT_EQ(::kill(pid, SIGINT), 0);
   int status = 0;
   ASSERT_EQ(::waitpid(pid, &status, 0), pid);

@@ -65,7 +65,7 @@ double Tracker::quantity(Quantity q, const Region& r, double X, double x) const 
 
 void Tracker::sample(const SampleTime& st) {
   const double t = st.t;
-  if (st.kind == 0) {
+  if (st.kind == SampleTime::Kind::probe) {
     const ProbeDecl& probe = scene_.outputs.probes[st.index];
     const int body = probe_body(scene_, probe);
     Region r;

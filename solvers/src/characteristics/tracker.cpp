@@ -78,13 +78,11 @@ void Tracker::build_walls() {
   }
 }
 
-void Tracker::collect_sample_times() { samples_ = sample_times(scene_); }
 
 RunResult Tracker::run() {
   const auto start = std::chrono::steady_clock::now();
   build_bodies();
   build_walls();
-  collect_sample_times();
   result_.solver = "characteristics";
   result_.solver_numbers = {{"tolerance", scene_.solver.tolerance}};
   for (const BodyDecl& b : scene_.bodies) result_.body_names.push_back(b.name);
@@ -149,7 +147,6 @@ RunResult Tracker::run() {
   // interactions and the interactions grow linearly with time.end. Fans alone need about
   // (their span in Ψ)/tolerance steps: a genuinely nonlinear body costs ~1/tolerance² per
   // crossing.
-  std::size_t next_sample = 0;
   for (;;) {
     while (!queue_.empty() && !valid(queue_.top())) queue_.pop();
     meetings_.prune();
@@ -158,9 +155,8 @@ RunResult Tracker::run() {
         !queue_.empty() && (meetings_.empty() || queue_.top().t < meetings_.top().t ||
                             (queue_.top().t == meetings_.top().t && queue_.top().seq < meetings_.top().seq));
     const double t_event = rare_first ? queue_.top().t : meetings_.empty() ? kInf : meetings_.top().t;
-    const double t_sample = next_sample < samples_.size() ? samples_[next_sample].t : kInf;
-    if (t_sample < t_event) {
-      sample(samples_[next_sample++]);
+    if (samples_.next_time() < t_event) {
+      sample(samples_.pop());
       continue;
     }
     if (t_event > scene_.t_end) break;
@@ -177,7 +173,7 @@ RunResult Tracker::run() {
     }
   }
   const double t_end = recorder_.stopped() ? recorder_.t_reached() : scene_.t_end;
-  for (; next_sample < samples_.size() && !recorder_.stopped(); ++next_sample) sample(samples_[next_sample]);
+  while (!samples_.done() && !recorder_.stopped()) sample(samples_.pop());
 
   // Close the books at t_end.
   for (int side = 0; side < 2; ++side) flush_wall(side, t_end);

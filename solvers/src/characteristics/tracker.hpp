@@ -139,7 +139,6 @@ class Tracker {
   // ---- set-up -------------------------------------------------------------------
   void build_bodies();
   void build_walls();
-  void collect_sample_times();
 
   // ---- node list ------------------------------------------------------------------
   int new_node(NodeKind kind, int piece) {
@@ -283,7 +282,7 @@ class Tracker {
   std::uint64_t seq_ = 0;
   long live_fronts_ = 0;
 
-  std::vector<SampleTime> samples_;
+  SampleSchedule samples_{scene_};
   RunResult result_;
   double impulse_ = 0.0, wall_work_ = 0.0, dissipated_ = 0.0;
   double last_interaction_t_ = -1.0;

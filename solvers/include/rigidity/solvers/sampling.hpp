@@ -2,6 +2,7 @@
 /// What both solvers share to fill a scene's outputs: when to sample, and the value of
 /// an output quantity in a uniform state.
 
+#include <limits>
 #include <vector>
 
 #include "rigidity/material.hpp"
@@ -13,14 +14,39 @@ namespace rigidity {
 
 /// A time at which an output wants the solution.
 struct SampleTime {
+  enum class Kind { probe, snapshot };
   double t;
-  int kind;   ///< 0 probe, 1 snapshot
+  Kind kind;
   int index;  ///< into scene.outputs.probes or .snapshots
 };
 
 /// Every probe sample (0, every, 2 every, ... ≤ t_end) and snapshot time, in time order
-/// (probes before snapshots at equal times, each in scene order).
-[[nodiscard]] std::vector<SampleTime> sample_times(const Scene& scene);
+/// (probes before snapshots at equal times, each in scene order), made one at a time:
+/// a run of 10⁹ probe samples costs no memory and no set-up.
+class SampleSchedule {
+ public:
+  explicit SampleSchedule(const Scene& scene);
+  [[nodiscard]] bool done() const { return next_.t == kNever; }
+  /// The next sample's time (+∞ when done).
+  [[nodiscard]] double next_time() const { return next_.t; }
+  /// The next sample, and advance past it. \pre !done()
+  SampleTime pop();
+
+ private:
+  static constexpr double kNever = std::numeric_limits<double>::infinity();
+  struct Stream {
+    double every = 0.0;        ///< a probe's interval (0 for a snapshot)
+    long count = 0;            ///< samples in all
+    long taken = 0;            ///< samples already made
+    std::vector<double> times; ///< a snapshot's times, sorted
+  };
+  [[nodiscard]] double time_of(const Stream& s) const;
+  void find_next();
+
+  double t_end_;
+  std::vector<Stream> probes_, snapshots_;
+  SampleTime next_{kNever, SampleTime::Kind::probe, -1};
+};
 
 /// Index of the body a probe samples (the loader has checked that it exists).
 [[nodiscard]] int probe_body(const Scene& scene, const ProbeDecl& probe);
