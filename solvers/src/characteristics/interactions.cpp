@@ -57,16 +57,16 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   if (before.X_at(t) >= X - tolerance || after.X_at(t) <= X + tolerance) return false;  // a crowd: resolve in full
   const State& left = before.right.state;
   const State& right = nb.right.state;
-  const double psi_left = m->riemann_psi(left.stretch), psi_right = m->riemann_psi(right.stretch);
+  const double psi_left = memo_->psi(*m, left.stretch), psi_right = memo_->psi(*m, right.stretch);
   const double j_plus = left.rapidity + psi_left;
   const double j_minus = right.rapidity - psi_right;
   const double psi_star = 0.5 * (j_plus - j_minus);
   if (!(psi_star < m->psi_max())) return false;
   if (m->cavitation_pressure() > -kInf) {
     const Solved<Stretch> parting = m->stretch_at_pressure(m->cavitation_pressure());
-    if (!parting.ok() || psi_star < m->riemann_psi(parting.value)) return false;
+    if (!parting.ok() || psi_star < memo_->psi(*m, parting.value)) return false;
   }
-  const Solved<Stretch> star_stretch = m->stretch_at_psi(psi_star);
+  const Solved<Stretch> star_stretch = memo_->stretch_at_psi(*m, psi_star);
   if (!star_stretch.ok()) return false;
   State star{0.5 * (j_plus + j_minus), star_stretch.value};
 
@@ -175,7 +175,7 @@ void Tracker::set_front(int id, int family, FrontKind kind, const Material& m, c
                         double t, double X, double x, double off_hugoniot, double born, double strength) {
   Node& n = nodes_[id];
   n.strength = strength;
-  const FrontSpeeds speeds = kind == FrontKind::contact ? characteristic_speeds(m, right, family)
+  const FrontSpeeds speeds = kind == FrontKind::contact ? memo_->speeds(m, right, family)
                                                         : label_jump_speeds(m, left, right, family);
   n.born = born;
   n.family = family;

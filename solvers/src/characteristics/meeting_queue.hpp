@@ -1,70 +1,104 @@
 #pragma once
-#include <algorithm>
 #include <cstdint>
 #include <vector>
 
 namespace rigidity::characteristics {
 
-/// The next meeting of each node with its right neighbour: a binary min-heap invalidated
-/// lazily, as event-driven codes do. Each node has a stamp; scheduling or cancelling its
-/// meeting bumps the stamp, and an entry whose stamp no longer matches is dropped when it
-/// reaches the top. Nothing is erased from the middle of the heap; when stale entries
-/// outnumber the live ones the heap is rebuilt from the live ones, so its size stays within
-/// a few times the number of live fronts.
+/// The next meeting of each node with its right neighbour: an indexed 4-ary min-heap.
+/// A node has at most one entry, and the heap knows where it is, so rescheduling a
+/// node moves its entry up or down in place and cancelling removes it: the heap holds
+/// only live meetings (no stale entries to pop), and four children per level make it
+/// half as deep as a binary heap, with the children of a slot side by side in memory.
+/// Ties in time go to the meeting scheduled first (`seq`), so runs are deterministic.
 class MeetingQueue {
  public:
   struct Entry {
     double t;
     std::uint64_t seq;
     int node;
-    std::uint32_t stamp;
   };
 
-  /// Drops stale entries from the top; call before empty() and top().
-  void prune() {
-    while (!heap_.empty() && !current(heap_.front())) pop_heap();
-  }
   [[nodiscard]] bool empty() const { return heap_.empty(); }
   [[nodiscard]] const Entry& top() const { return heap_.front(); }
 
   void set(int node, double t, std::uint64_t seq) {
     grow(node);
-    if (!scheduled_[node]) ++live_;
-    scheduled_[node] = true;
-    heap_.push_back(Entry{t, seq, node, ++stamp_[node]});
-    std::push_heap(heap_.begin(), heap_.end(), later);
-    if (heap_.size() > 4 * static_cast<std::size_t>(live_) + 1024) compact();
+    const Entry e{t, seq, node};
+    const int at = position_[static_cast<std::size_t>(node)];
+    if (at == kAbsent) {
+      heap_.push_back(e);
+      sift_up(heap_.size() - 1, e);
+      return;
+    }
+    const std::size_t i = static_cast<std::size_t>(at);
+    if (earlier(e, heap_[i])) {
+      sift_up(i, e);
+    } else {
+      sift_down(i, e);
+    }
   }
 
   void erase(int node) {
-    if (node >= static_cast<int>(stamp_.size()) || !scheduled_[node]) return;
-    scheduled_[node] = false;
-    --live_;
-    ++stamp_[node];
+    if (node >= static_cast<int>(position_.size())) return;
+    const int at = position_[static_cast<std::size_t>(node)];
+    if (at == kAbsent) return;
+    position_[static_cast<std::size_t>(node)] = kAbsent;
+    const Entry last = heap_.back();
+    heap_.pop_back();
+    const std::size_t i = static_cast<std::size_t>(at);
+    if (i == heap_.size()) return;  // it was the last entry
+    if (earlier(last, heap_[i])) {
+      sift_up(i, last);
+    } else {
+      sift_down(i, last);
+    }
   }
 
  private:
-  static bool later(const Entry& a, const Entry& b) { return a.t != b.t ? a.t > b.t : a.seq > b.seq; }
-  [[nodiscard]] bool current(const Entry& e) const { return scheduled_[e.node] && stamp_[e.node] == e.stamp; }
+  static constexpr int kAbsent = -1;
+  static constexpr std::size_t kArity = 4;
+
+  /// Without branches: which of four children is earliest is a coin toss the branch
+  /// predictor cannot learn.
+  static bool earlier(const Entry& a, const Entry& b) {
+    return static_cast<bool>(static_cast<int>(a.t < b.t) | (static_cast<int>(a.t == b.t) & static_cast<int>(a.seq < b.seq)));
+  }
   void grow(int node) {
-    if (node < static_cast<int>(stamp_.size())) return;
-    stamp_.resize(static_cast<std::size_t>(node) + 1, 0);
-    scheduled_.resize(static_cast<std::size_t>(node) + 1, false);
+    if (node < static_cast<int>(position_.size())) return;
+    position_.resize(static_cast<std::size_t>(node) + 1, kAbsent);
   }
-  void pop_heap() {
-    std::pop_heap(heap_.begin(), heap_.end(), later);
-    heap_.pop_back();
+  void place(std::size_t i, const Entry& e) {
+    heap_[i] = e;
+    position_[static_cast<std::size_t>(e.node)] = static_cast<int>(i);
   }
-  void compact() {
-    heap_.erase(std::remove_if(heap_.begin(), heap_.end(), [this](const Entry& e) { return !current(e); }),
-                heap_.end());
-    std::make_heap(heap_.begin(), heap_.end(), later);
+  /// Puts e at slot i or above it, moving later parents down.
+  void sift_up(std::size_t i, const Entry& e) {
+    while (i > 0) {
+      const std::size_t parent = (i - 1) / kArity;
+      if (!earlier(e, heap_[parent])) break;
+      place(i, heap_[parent]);
+      i = parent;
+    }
+    place(i, e);
+  }
+  /// Puts e at slot i or below it, moving earlier children up.
+  void sift_down(std::size_t i, const Entry& e) {
+    const std::size_t n = heap_.size();
+    for (;;) {
+      const std::size_t first = kArity * i + 1;
+      if (first >= n) break;
+      std::size_t best = first;
+      const std::size_t end = first + kArity < n ? first + kArity : n;
+      for (std::size_t c = first + 1; c < end; ++c) best = earlier(heap_[c], heap_[best]) ? c : best;
+      if (!earlier(heap_[best], e)) break;
+      place(i, heap_[best]);
+      i = best;
+    }
+    place(i, e);
   }
 
   std::vector<Entry> heap_;
-  std::vector<std::uint32_t> stamp_;
-  std::vector<bool> scheduled_;
-  long live_ = 0;
+  std::vector<int> position_;  ///< slot of each node's entry, or kAbsent
 };
 
 }  // namespace rigidity::characteristics

@@ -149,7 +149,6 @@ RunResult Tracker::run() {
   // crossing.
   for (;;) {
     while (!queue_.empty() && !valid(queue_.top())) queue_.pop();
-    meetings_.prune();
     // The earliest of the next rare event and the next meeting (ties in the order scheduled).
     const bool rare_first =
         !queue_.empty() && (meetings_.empty() || queue_.top().t < meetings_.top().t ||

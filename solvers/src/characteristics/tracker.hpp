@@ -12,10 +12,12 @@
 #include <cstdint>
 #include <limits>
 #include <queue>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "front_math.hpp"
+#include "memo.hpp"
 #include "meeting_queue.hpp"
 #include "rigidity/run_recorder.hpp"
 #include "rigidity/run_result.hpp"
@@ -229,6 +231,8 @@ class Tracker {
   const Scene& scene_;
   RunRecorder& recorder_;  ///< fronts, samples and events go there as they are produced
   bool want_fronts_ = false;
+  /// Ψ, stretches and characteristic speeds of the states linearly degenerate crossings revisit.
+  std::unique_ptr<MaterialMemo> memo_ = std::make_unique<MaterialMemo>();
   double fan_step_ = 1e-12;
   bool fan_capped_ = false;
   // ---- the error budget (see README "What the tolerance means") --------------------
