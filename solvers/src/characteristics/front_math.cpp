@@ -48,23 +48,32 @@ Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch 
   if (!(u2 >= 0.0) || !(dp + w * u2 != 0.0) || ((dp + w * u2) > 0.0) != (dp > 0.0))
     return Solved<double>::failure(Status::out_of_range);
   const double relative = std::asinh(std::sqrt(u2));
-  // A compression slows the state behind a C− shock (it moves against the family's direction).
-  const double direction = m.riemann_psi(star) > m.riemann_psi(outer.stretch) ? family : -family;
+  // A compression (Ψ grows as s falls, c_s > 0) slows the state behind a C− shock (it moves
+  // against the family's direction).
+  const double direction = star.log() < outer.stretch.log() ? family : -family;
   return Solved<double>{outer.rapidity + direction * relative, Status::ok};
 }
 
-Solved<double> curve_rapidity(const Material& m, const State& outer, double psi_outer, double z, int family) {
+Solved<double> curve_rapidity(const Material& m, const State& outer, double psi_outer, double outer_speed, double z,
+                              int family) {
   const Stretch s = Stretch::from_log(z);
-  if (wave_is_shock(m, outer, s, family)) return hugoniot_rapidity(m, outer, s, family);
-  return Solved<double>{outer.rapidity + family * (m.riemann_psi(s) - psi_outer), Status::ok};
+  // The state on the integral curve; the wave is a shock where the characteristics of its
+  // family converge across it (as wave_is_shock decides, with the outer speed given).
+  const double on_curve = outer.rapidity + family * (m.riemann_psi(s) - psi_outer);
+  if (m.linearly_degenerate() || s == outer.stretch) return Solved<double>{on_curve, Status::ok};
+  const double star_speed = characteristic_speed(m, State{on_curve, s}, family);
+  const bool shock = family < 0 ? !(outer_speed < star_speed) : !(star_speed < outer_speed);
+  if (shock) return hugoniot_rapidity(m, outer, s, family);
+  return Solved<double>{on_curve, Status::ok};
 }
 
 Solved<State> same_material_star(const Material& m, const State& left, const State& right, const State& guess) {
   const double psi_left = m.riemann_psi(left.stretch), psi_right = m.riemann_psi(right.stretch);
+  const double speed_left = characteristic_speed(m, left, -1), speed_right = characteristic_speed(m, right, +1);
   double rapidity = guess.rapidity;
   auto mismatch = [&](double z, double& g) {
-    const Solved<double> a = curve_rapidity(m, left, psi_left, z, -1);
-    const Solved<double> b = curve_rapidity(m, right, psi_right, z, +1);
+    const Solved<double> a = curve_rapidity(m, left, psi_left, speed_left, z, -1);
+    const Solved<double> b = curve_rapidity(m, right, psi_right, speed_right, z, +1);
     if (!a.ok() || !b.ok()) return false;
     g = a.value - b.value;
     rapidity = 0.5 * (a.value + b.value);

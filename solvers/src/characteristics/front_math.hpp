@@ -33,7 +33,10 @@ Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch 
 /// The rapidity at stretch e^z on the wave curve of family `family` through `outer`: the
 /// closed-form Hugoniot where that wave is a shock, else the integral curve (the other
 /// family's invariant carried across: φ = φ_outer + family (Ψ − Ψ_outer)).
-Solved<double> curve_rapidity(const Material& m, const State& outer, double psi_outer, double z, int family);
+/// `outer_speed` is the characteristic speed of family `family` in `outer` (a root find along
+/// one curve asks for it once).
+Solved<double> curve_rapidity(const Material& m, const State& outer, double psi_outer, double outer_speed, double z,
+                              int family);
 
 /// The exact star state between two states of one material: ln s* where the C− curve
 /// through `left` meets the C+ curve through `right`, by secant steps from `guess` (the
