@@ -255,7 +255,7 @@ Candidate set_up(const MaterialInfo& info, const std::vector<ParameterOverride>&
     if (spec.name != "rest_density") c.parameters += (c.parameters.empty() ? "" : ";") + spec.name + "=" + text;
   }
   try {
-    c.material = info.make(values);
+    c.material = build_material(info, values);
   } catch (const std::exception& e) {
     throw std::invalid_argument(info.name + " cannot be built with " +
                                 (c.parameters.empty() ? std::string("its defaults") : c.parameters) + ": " + e.what());

@@ -37,9 +37,9 @@ inline const std::map<std::string, std::map<std::string, std::vector<std::string
 inline const std::vector<std::string> kTestOnlyMaterials = {"test_constant_sound_speed_strain_energy",
                                                             "test_rigid_pressure_law"};
 
-/// Registered material `name`: declared defaults, then `values` (and `texts`, else the first of
-/// kTextSamples for a required text), each checked against its declared range as the scene loader
-/// does. \throws std::invalid_argument on a bad value.
+/// Registered material `name` built as a scene builds it (build_material): declared defaults,
+/// then `values` and `texts` (else the first of kTextSamples for a required text).
+/// \throws std::invalid_argument on a bad value or a material that is not admissible with them.
 inline std::shared_ptr<const Material> make_material(std::string_view name,
                                                      const std::map<std::string, double>& values = {},
                                                      const std::map<std::string, std::string>& texts = {}) {
@@ -54,21 +54,8 @@ inline std::shared_ptr<const Material> make_material(std::string_view name,
         parameters.set(spec.name, sample->second.front());
     }
   }
-  for (const ParameterSpec& spec : info.parameters)
-    if (spec.default_number) parameters.set(spec.name, *spec.default_number);
-  for (const auto& [key, value] : values) {
-    const auto spec = std::find_if(info.parameters.begin(), info.parameters.end(),
-                                   [&key = key](const ParameterSpec& p) { return p.name == key; });
-    if (spec == info.parameters.end())
-      throw std::invalid_argument(std::string(name) + " has no parameter '" + key + "'");
-    if (const std::string rule = spec->range_violation(value); !rule.empty())
-      throw std::invalid_argument(std::string(name) + "." + key + " " + rule);
-    parameters.set(key, value);
-  }
-  for (const ParameterSpec& spec : info.parameters)
-    if (spec.required && !parameters.has(spec.name))
-      throw std::invalid_argument(std::string(name) + " needs '" + spec.name + "'");
-  return info.make(parameters);
+  for (const auto& [key, value] : values) parameters.set(key, value);
+  return build_material(info, parameters);
 }
 
 /// Stretches from 1e-9 to 1e12 (ln-spaced), strains of ±1e-12, ±1e-6, ±1e-3 and s = 1, kept

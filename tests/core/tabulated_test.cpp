@@ -76,7 +76,7 @@ std::shared_ptr<const Material> tabulated(const std::string& path, double rest_d
   values.set("rest_density", rest_density);
   values.set("table", path);
   values.set_directory(directory);
-  return MaterialRegistry::instance().at("tabulated").make(values);
+  return build_material("tabulated", values);
 }
 
 /// The message a table is refused with ("" if accepted).

@@ -72,7 +72,7 @@ TEST(Plugins, APluginRegistersItsMaterialsAsABuiltinDoes) {
   EXPECT_TRUE(info.file.ends_with("test_plugin.cpp")) << info.file;
   ParameterValues values;
   values.set("rest_density", 2.0);
-  const auto material = info.make(values);
+  const auto material = build_material(info, values);
   EXPECT_EQ(material->model(), "test_plugin_material");
   EXPECT_NEAR(material->sound_speed(Stretch::natural()), 0.5, 1e-12);
   // Once per process: loading it again (by another path to the same file) changes nothing.
@@ -149,6 +149,25 @@ TEST(Plugins, ASceneUsesTheMaterialsOfThePluginsItLists) {
   EXPECT_NEAR(c.momentum_final - c.momentum_initial, c.wall_impulse, books);
   EXPECT_NEAR(c.energy_final - c.energy_initial, c.wall_work - c.energy_dissipated, books);
   EXPECT_GT(c.energy_dissipated, 0.0) << "a genuine shock";
+}
+
+TEST(Plugins, AMaterialIsCheckedWithTheParametersTheSceneGives) {
+  // test_plugin_required is the rigid law with its stiffness scaled by `scale`/4: c_s = c
+  // at scale 4, and it cannot be checked when its plugin loads (the factor is required).
+  // A scene that makes it acausal is refused at the material, before anything runs.
+  const auto scene_with = [](const std::string& scale) {
+    return "name: x\nplugins: [" + plugin("required").string() + "]\nmaterials:\n  m: {model: test_plugin_required, scale: " +
+           scale + "}\nbodies: [{name: b, material: m, position: 0, length: 1}]\ntime: {end: 1}\n";
+  };
+  try {
+    (void)load_scene_string(scene_with("16"), "<test>");
+    FAIL() << "an acausal material was accepted";
+  } catch (const InputError& e) {
+    EXPECT_TRUE(contains(e.what(), "<test>:4:")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "'m'")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "acausal")) << e.what();
+  }
+  EXPECT_NO_THROW((void)load_scene_string(scene_with("2"), "<test>"));
 }
 
 TEST(Plugins, RelativePathsStartAtTheSceneFile) {

@@ -31,7 +31,7 @@ RIGIDITY_REGISTER_MATERIAL(LinearLaw);
 TEST(ReversedConvexity, ExpansionsAreShocksAndCompressionsFans) {
   ParameterValues values;
   values.set("rest_density", 1.0);
-  const auto m = MaterialRegistry::instance().at("test_linear_law").make(values);
+  const auto m = build_material("test_linear_law", values);
   const State compressed{0.0, Stretch::from_value(0.8)};
   // Released at a free end (p → 0, s → 1): an expansion, a shock for this material.
   EXPECT_TRUE(wave_is_shock(*m, compressed, Stretch::natural(), -1));

@@ -615,7 +615,7 @@ TEST(FiniteVolumeRecovery, ClampsAFluidInTensionAndRefusesTheImpossible) {
   const MaterialInfo& info = MaterialRegistry::instance().at("rigid_fluid");
   ParameterValues values;
   for (const ParameterSpec& spec : info.parameters) values.set(spec.name, 1.0);
-  const std::shared_ptr<const Material> fluid = info.make(values);
+  const std::shared_ptr<const Material> fluid = build_material(info, values);
   // More label density than the unstrained fluid at this momentum: void.
   const finite_volume::Recovered r = finite_volume::recover_state(*fluid, finite_volume::Conserved{1.2, 0.3});
   ASSERT_TRUE(r.ok());
@@ -629,7 +629,7 @@ TEST(FiniteVolumeRecovery, ClampsAFluidInTensionAndRefusesTheImpossible) {
     EXPECT_FALSE(bad.ok());
   }
   // The rigid solid at s/γ = L carries momentum below ρ00/L only (G → ρ00 tanh φ / L).
-  const std::shared_ptr<const Material> rigid = MaterialRegistry::instance().at("rigid").make(values);
+  const std::shared_ptr<const Material> rigid = build_material("rigid", values);
   EXPECT_FALSE(finite_volume::recover_state(*rigid, finite_volume::Conserved{0.5, 2.5}).ok());
   EXPECT_TRUE(finite_volume::recover_state(*rigid, finite_volume::Conserved{0.5, 1.9}).ok());
 }
@@ -638,7 +638,7 @@ TEST(FiniteVolumeKernels, HllFluxOfEqualStatesIsThePhysicalFlux) {
   const MaterialInfo& info = MaterialRegistry::instance().at("hooke");
   ParameterValues values;
   for (const ParameterSpec& spec : info.parameters) values.set(spec.name, spec.name == "rest_density" ? 1.0 : 0.5);
-  const std::shared_ptr<const Material> m = info.make(values);
+  const std::shared_ptr<const Material> m = build_material(info, values);
   const State st{0.3, Stretch::from_value(0.8)};
   const finite_volume::FaceFlux f = finite_volume::hll_flux(*m, st, *m, st);
   EXPECT_NEAR(f.velocity_left, std::tanh(0.3), 4.0 * kEps);

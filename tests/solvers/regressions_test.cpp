@@ -37,7 +37,7 @@ TEST(Regressions, FiniteVolumeRecoversSubnormalAndTinyMomenta) {
   ParameterValues values;
   values.set("rest_density", 2.0);
   values.set("wave_speed", 0.5);
-  const auto hooke = MaterialRegistry::instance().at("hooke").make(values);
+  const auto hooke = build_material("hooke", values);
   for (double momentum : {4e-311, 1.2e-308, 1e-100, 1e-20}) {
     const finite_volume::Conserved u{1.0, momentum};
     for (double guess : {0.0, 1e-3, 0.1}) {
@@ -57,7 +57,7 @@ TEST(Regressions, AShockAsWeakAsRoundOffIsSolved) {
   ParameterValues values;
   values.set("rest_density", 1.306);
   values.set("sound_speed", 0.766);
-  const auto m = MaterialRegistry::instance().at("constant_sound_speed").make(values);
+  const auto m = build_material("constant_sound_speed", values);
   const State left{0.084683510613710489, Stretch::from_log(-0.38742040442452447)};
   const State right{0.084683510613702648, Stretch::from_log(-0.38742040442453474)};
   const RiemannSolution sol = solve_riemann(*m, left, *m, right, -std::numeric_limits<double>::infinity());

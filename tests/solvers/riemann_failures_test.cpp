@@ -72,7 +72,7 @@ std::shared_ptr<const Material> make(const std::string& model, const char* speed
   ParameterValues values;
   values.set("rest_density", 1.0);
   values.set(speed_key, speed);
-  return MaterialRegistry::instance().at(model).make(values);
+  return build_material(model, values);
 }
 
 /// The solution failed numerically (not out_of_range: that is a physical verdict), names the

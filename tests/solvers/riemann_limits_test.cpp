@@ -26,7 +26,7 @@ std::shared_ptr<const Material> make(const std::string& model, const char* speed
   ParameterValues values;
   values.set("rest_density", 1.0);
   if (speed_key != nullptr) values.set(speed_key, speed);
-  return MaterialRegistry::instance().at(model).make(values);
+  return build_material(model, values);
 }
 
 /// The shortest decimal that reads back to v, as the messages print it.

@@ -16,7 +16,7 @@ std::shared_ptr<const Material> make(const std::string& model, double rest_densi
   ParameterValues values;
   values.set("rest_density", rest_density);
   if (speed_key != nullptr) values.set(speed_key, speed);
-  return MaterialRegistry::instance().at(model).make(values);
+  return build_material(model, values);
 }
 
 // Conserved densities and fluxes per unit label (SPEC §1).

@@ -100,6 +100,21 @@ class MaterialRegistry {
   std::size_t batch_first_conflict_ = 0;
 };
 
+/// The one way to build a registered material, for a scene, a plugin check, `compare`, a test
+/// or a benchmark alike: the declared defaults, then `given` (a number given must lie in its
+/// declared range, and the material must declare it), every required parameter present; then
+/// the material, with exactly these parameters, must be hyperbolic and causal on its admissible
+/// range (admissibility_problem). \throws std::invalid_argument saying which rule broke.
+[[nodiscard]] std::shared_ptr<const Material> build_material(const MaterialInfo& info, const ParameterValues& given);
+/// The same for a registered name. \throws std::invalid_argument for an unknown name too.
+[[nodiscard]] std::shared_ptr<const Material> build_material(std::string_view name,
+                                                            const ParameterValues& given = {});
+
+/// Empty if `material` is hyperbolic (W'' > 0) and causal (c_s ≤ c), with finite pressure,
+/// energy and Ψ, at s = 1 and at 257 stretches spanning its admissible range (s in [1e-6, 1e6]
+/// where the range is unbounded); else the first violation and where.
+[[nodiscard]] std::string admissibility_problem(const Material& material);
+
 /// The MaterialInfo of a material class that follows the pattern above.
 template <class M>
 MaterialInfo describe_material(const char* file, int line) {

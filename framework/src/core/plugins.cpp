@@ -22,10 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Points of ln s at which a plugin's materials are checked, ends included.
-constexpr int kAdmissibilitySamples = 256;
-/// Where an unbounded admissible range is sampled to: s in [1e-6, 1e6].
-constexpr double kUnboundedLogStretch = 13.815510557964274;  // ln 1e6
 /// The file name ending of a shared library on this platform.
 #ifdef __APPLE__
 constexpr std::string_view kLibrarySuffix = ".dylib";
@@ -43,45 +39,6 @@ struct Plugins {
 Plugins& plugins() {
   static Plugins instance;
   return instance;
-}
-
-std::string number_text(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
-
-/// Empty if `material` is hyperbolic and causal at every sample of its admissible range (and
-/// at s = 1), else why not.
-std::string admissibility_problem(const Material& material) {
-  const StretchRange range = material.admissible();
-  const std::string name = "material '" + std::string(material.model()) + "'";
-  if (!range.contains(Stretch::natural())) return name + ": its admissible range does not contain s = 1";
-  const double lo = std::isfinite(range.log_min) ? range.log_min : std::min(-kUnboundedLogStretch, range.log_max);
-  const double hi = std::isfinite(range.log_max) ? range.log_max : std::max(kUnboundedLogStretch, range.log_min);
-  const std::string sampled = " (checked at " + std::to_string(kAdmissibilitySamples + 1) + " stretches from " +
-                              number_text(std::exp(lo)) + " to " + number_text(std::exp(hi)) +
-                              ", its admissible range, built with its default parameters)";
-  for (int i = 0; i <= kAdmissibilitySamples + 1; ++i) {
-    const Stretch s = i == kAdmissibilitySamples + 1 ? Stretch::natural()
-                      : i == kAdmissibilitySamples   ? Stretch::from_log(hi)
-                                                     : Stretch::from_log(lo + (hi - lo) * i / kAdmissibilitySamples);
-    try {
-      if (const std::string violation = material.admissibility_violation(s); !violation.empty())
-        return violation + sampled;
-      const double stiffness = material.stiffness(s);
-      if (!(stiffness > 0.0))
-        return name + " is not hyperbolic at stretch " + number_text(s.value()) + " (W'' = " + number_text(stiffness) +
-               ")" + sampled;
-      if (!std::isfinite(material.pressure(s)) || !std::isfinite(material.energy_density(s)) ||
-          !std::isfinite(material.riemann_psi(s)))
-        return name + " gives no number at stretch " + number_text(s.value()) + sampled;
-    } catch (const std::exception& e) {
-      return name + ": evaluating it at stretch " + number_text(s.value()) + " failed: " + e.what();
-    }
-  }
-  return "";
 }
 
 /// Empty if the library just opened (its materials the registry's open batch) may be kept,
@@ -110,25 +67,19 @@ std::string refusal(void* handle, const MaterialRegistry& registry, LoadedPlugin
     return "registers no material (a plugin registers each of its materials with RIGIDITY_REGISTER_MATERIAL)";
   for (const MaterialInfo* info : materials) {
     plugin.materials.push_back(info->name);
-    ParameterValues defaults;
     std::string required;
-    for (const ParameterSpec& p : info->parameters) {
-      if (p.default_number) defaults.set(p.name, *p.default_number);
-      if (p.default_text) defaults.set(p.name, *p.default_text);
+    for (const ParameterSpec& p : info->parameters)
       if (p.required) required += (required.empty() ? "'" : ", '") + p.name + "'";
-    }
     if (!required.empty()) {
-      plugin.notes.push_back("material '" + info->name + "' was not checked at load: it requires " + required);
+      plugin.notes.push_back("material '" + info->name + "' was not checked at load: it requires " + required +
+                             " (a scene that uses it checks it with the parameters it gives)");
       continue;
     }
-    std::shared_ptr<const Material> material;
     try {
-      material = info->make(defaults);
+      (void)build_material(*info, ParameterValues{});
     } catch (const std::exception& e) {
-      return "is refused: material '" + info->name + "' cannot be built with its default parameters: " + e.what();
+      return "is refused: material '" + info->name + "' with its default parameters: " + e.what();
     }
-    if (const std::string problem = admissibility_problem(*material); !problem.empty())
-      return "is refused: " + problem;
   }
   return "";
 }

@@ -1,8 +1,12 @@
 #include "rigidity/registry.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <exception>
+#include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "rigidity/spelling.hpp"
 
@@ -90,5 +94,88 @@ std::vector<std::string> MaterialRegistry::names() const {
 }
 
 std::string MaterialRegistry::closest(std::string_view name) const { return closest_match(name, names()); }
+
+namespace {
+/// Points of ln s at which a material is checked, ends included.
+constexpr int kAdmissibilitySamples = 256;
+/// Where an unbounded admissible range is sampled to: s in [1e-6, 1e6].
+constexpr double kUnboundedLogStretch = 13.815510557964274;  // ln 1e6
+
+std::string number_text(double v) {
+  std::ostringstream os;
+  os.precision(6);
+  os << v;
+  return os.str();
+}
+}  // namespace
+
+/// Empty if `material` is hyperbolic and causal at every sample of its admissible range (and
+/// at s = 1), else why not.
+std::string admissibility_problem(const Material& material) {
+  const StretchRange range = material.admissible();
+  const std::string name = "material '" + std::string(material.model()) + "'";
+  if (!range.contains(Stretch::natural())) return name + ": its admissible range does not contain s = 1";
+  const double lo = std::isfinite(range.log_min) ? range.log_min : std::min(-kUnboundedLogStretch, range.log_max);
+  const double hi = std::isfinite(range.log_max) ? range.log_max : std::max(kUnboundedLogStretch, range.log_min);
+  const std::string sampled = " (checked at " + std::to_string(kAdmissibilitySamples + 1) + " stretches from " +
+                              number_text(std::exp(lo)) + " to " + number_text(std::exp(hi)) +
+                              ", its admissible range)";
+  for (int i = 0; i <= kAdmissibilitySamples + 1; ++i) {
+    const Stretch s = i == kAdmissibilitySamples + 1 ? Stretch::natural()
+                      : i == kAdmissibilitySamples   ? Stretch::from_log(hi)
+                                                     : Stretch::from_log(lo + (hi - lo) * i / kAdmissibilitySamples);
+    try {
+      if (const std::string violation = material.admissibility_violation(s); !violation.empty())
+        return violation + sampled;
+      const double stiffness = material.stiffness(s);
+      if (!(stiffness > 0.0))
+        return name + " is not hyperbolic at stretch " + number_text(s.value()) + " (W'' = " + number_text(stiffness) +
+               ")" + sampled;
+      if (!std::isfinite(material.pressure(s)) || !std::isfinite(material.energy_density(s)) ||
+          !std::isfinite(material.riemann_psi(s)))
+        return name + " gives no number at stretch " + number_text(s.value()) + sampled;
+    } catch (const std::exception& e) {
+      return name + ": evaluating it at stretch " + number_text(s.value()) + " failed: " + e.what();
+    }
+  }
+  return "";
+}
+
+
+std::shared_ptr<const Material> build_material(const MaterialInfo& info, const ParameterValues& given) {
+  ParameterValues values;
+  values.set_directory(given.directory());
+  for (const ParameterSpec& spec : info.parameters) {
+    if (spec.default_number) values.set(spec.name, *spec.default_number);
+    if (spec.default_text) values.set(spec.name, *spec.default_text);
+  }
+  const auto declared = [&info](const std::string& key) {
+    return std::find_if(info.parameters.begin(), info.parameters.end(),
+                        [&key](const ParameterSpec& p) { return p.name == key; });
+  };
+  for (const auto& entry : given.numbers()) {
+    const auto spec = declared(entry.first);
+    if (spec == info.parameters.end())
+      throw std::invalid_argument("'" + info.name + "' has no parameter '" + entry.first + "'");
+    if (const std::string rule = spec->range_violation(entry.second); !rule.empty())
+      throw std::invalid_argument(entry.first + " " + rule);
+    values.set(entry.first, entry.second);
+  }
+  for (const auto& entry : given.texts()) {
+    if (declared(entry.first) == info.parameters.end())
+      throw std::invalid_argument("'" + info.name + "' has no parameter '" + entry.first + "'");
+    values.set(entry.first, entry.second);
+  }
+  for (const ParameterSpec& spec : info.parameters)
+    if (spec.required && !values.has(spec.name)) throw std::invalid_argument("'" + info.name + "' needs '" + spec.name + "'");
+  std::shared_ptr<const Material> material = info.make(values);
+  if (const std::string problem = admissibility_problem(*material); !problem.empty())
+    throw std::invalid_argument(problem);
+  return material;
+}
+
+std::shared_ptr<const Material> build_material(std::string_view name, const ParameterValues& given) {
+  return build_material(MaterialRegistry::instance().at(name), given);
+}
 
 }  // namespace rigidity

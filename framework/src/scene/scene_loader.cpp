@@ -96,7 +96,7 @@ class SceneBuilder {
       }
       std::shared_ptr<const Material> material;
       try {
-        material = info.make(values);
+        material = build_material(info, values);  // hyperbolic and causal with these parameters
       } catch (const std::invalid_argument& e) {
         checker_.fail(entry, "material '" + entry.name + "' (" + model + "): " + e.what());
       }

@@ -4,7 +4,8 @@
 //   RIGIDITY_TEST_PLUGIN_WRONG_ABI     says it was built for another plugin ABI: refused
 //   RIGIDITY_TEST_PLUGIN_NOT_A_PLUGIN  registers a material but lacks RIGIDITY_PLUGIN(): refused
 //   RIGIDITY_TEST_PLUGIN_DUPLICATE     registers a second `rigid`: refused
-//   RIGIDITY_TEST_PLUGIN_REQUIRED      a material with a required parameter: loaded, with a note
+//   RIGIDITY_TEST_PLUGIN_REQUIRED      a material with a required parameter (a factor on its
+//                                      stiffness: acausal above 4): loaded, with a note
 #include <cmath>
 #include <string>
 #include <string_view>
@@ -48,13 +49,18 @@ class TestMaterial final : public rigidity::PressureLawMaterial {
     return out;
   }
   explicit TestMaterial(const rigidity::ParameterValues& values)
-      : PressureLawMaterial(values.number("rest_density"), {std::log(0.5), std::log(2.0)}) {}
+      : PressureLawMaterial(values.number("rest_density"), {std::log(0.5), std::log(2.0)}) {
+#if defined(RIGIDITY_TEST_PLUGIN_REQUIRED)
+    scale_ = values.number("scale");
+#endif
+  }
   [[nodiscard]] std::string_view model() const override { return kName; }
 
  private:
   [[nodiscard]] double pressure_law(double s) const override {
-    return 0.5 * kStiffness * rest_density() * (1.0 / (s * s) - 1.0);
+    return 0.5 * kStiffness * scale_ * rest_density() * (1.0 / (s * s) - 1.0);
   }
+  double scale_ = 1.0;
 };
 
 }  // namespace
