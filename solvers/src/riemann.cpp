@@ -13,6 +13,7 @@
 #include <system_error>
 
 #include "rigidity/errors.hpp"
+#include "rigidity/number_text.hpp"
 
 namespace rigidity {
 
@@ -458,14 +459,6 @@ RiemannSolution parted_pair(const WaveCurve& left, const WaveCurve& right, doubl
   out.left = a.value;
   out.right = b.value;
   return out;
-}
-
-/// Shortest decimal form that reads back to the same double (std::to_chars).
-std::string shortest(double v) {
-  std::array<char, 64> buffer{};
-  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
-  if (ec != std::errc()) return "?";
-  return std::string(buffer.data(), end);
 }
 
 }  // namespace

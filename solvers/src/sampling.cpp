@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace rigidity {
 
@@ -52,7 +54,8 @@ SampleTime SampleSchedule::pop() {
 int probe_body(const Scene& scene, const ProbeDecl& probe) {
   for (std::size_t b = 0; b < scene.bodies.size(); ++b)
     if (scene.bodies[b].name == probe.body) return static_cast<int>(b);
-  return 0;
+  // The loader checks every probe's body: a scene built in code that names none is a bug.
+  throw std::logic_error("probe '" + probe.name + "' samples body '" + probe.body + "', which the scene does not have");
 }
 
 bool snapshot_includes(const SnapshotDecl& snapshot, const BodyDecl& body) {

@@ -1,5 +1,7 @@
 #include "rigidity/solvers/solve.hpp"
 
+#include <string>
+
 #include "rigidity/errors.hpp"
 #include "rigidity/solvers/characteristics.hpp"
 #include "rigidity/solvers/finite_volume.hpp"
@@ -11,7 +13,8 @@ RunResult solve(const Scene& scene, RunRecorder& recorder) {
     case SolverMethod::characteristics: return solve_characteristics(scene, recorder);
     case SolverMethod::finite_volume: return solve_finite_volume(scene, recorder);
   }
-  throw NumericalError("unknown solver method");
+  throw NumericalError("unknown solver method " + std::to_string(static_cast<int>(scene.solver.method)) +
+                       " (not characteristics or finite_volume)");
 }
 
 RunResult solve(const Scene& scene) {

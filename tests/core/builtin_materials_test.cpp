@@ -97,7 +97,23 @@ INSTANTIATE_TEST_SUITE_P(Spec, WallImpactReference,
                          ::testing::Values(WallImpact{"rigid", 1.0, 0.6, 0.5, 1.5, 0.5, 1.5, 1.0},
                                            WallImpact{"rigid", 1.0, 0.8, 1.0 / 3.0, 4.0, 1.0 / 3.0, 4.0, 1.0},
                                            WallImpact{"hooke", 0.5, 0.2, std::sqrt(3.0 / 8.0), 1.0 / 9.0, 0.6123724357,
-                                                      0.1111111111, 0.5}));
+                                                      0.1111111111, 0.5}),
+                         [](const ::testing::TestParamInfo<WallImpact>& param) {
+                           return std::string(param.param.material) + "_at_" +
+                                  std::to_string(static_cast<int>(std::lround(param.param.v * 100))) + "_percent_c";
+                         });
+
+TEST(Messages, AStretchOutsideTheRangeIsPrintedWithEveryDigit) {
+  // The stretch in the message reads back to the very double (shortest round-trip form),
+  // where six significant digits printed 1.0000000001 as 1.
+  const auto m = rigid_fluid();
+  for (const Stretch s : {Stretch::from_log(1e-10), Stretch::from_value(1e12), Stretch::from_log(0.3)}) {
+    const std::string message = m->admissibility_violation(s);
+    const std::string::size_type at = message.find("stretch ");
+    ASSERT_NE(at, std::string::npos) << message;
+    EXPECT_EQ(std::stod(message.substr(at + 8)), s.value()) << message;
+  }
+}
 
 TEST(Rigid, StretchBehindAWallImpactIsTheDopplerFactor) {
   // Paper eq. (15): s = sqrt((1 − v)/(1 + v)).

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cctype>
 #include <string>
 #include <vector>
 
@@ -96,7 +97,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadOverride{{"time.end=2", "bodies.0.velocity=1.5"}, 2, 19, "bodies.0.velocity", "|v| < c"},
         BadOverride{{"boundaries.left={type: free, bonded: true}"}, 1, 30, "boundaries.left.bonded", "only applies"},
         BadOverride{{"solver.cells=many"}, 1, 14, "solver.cells", "got 'many'"}),
-    [](const testing::TestParamInfo<BadOverride>& param) { return "case" + std::to_string(param.index); });
+    [](const testing::TestParamInfo<BadOverride>& param) {
+      // case3_bodies_0_velocity_ : the override that breaks the rule, readable in a report.
+      std::string name = "case" + std::to_string(param.index) + "_";
+      for (const char c : param.param.overrides.back().substr(0, 32))
+        name += std::isalnum(static_cast<unsigned char>(c)) != 0 ? c : '_';
+      return name;
+    });
 
 }  // namespace
 }  // namespace rigidity::test

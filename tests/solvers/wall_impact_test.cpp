@@ -90,7 +90,10 @@ TEST_P(RigidWallImpact, MatchesThePaper) {
   expect_relative(c.momentum_initial, v / std::sqrt(1.0 - v * v), 1e-12, "initial momentum");
 }
 
-INSTANTIATE_TEST_SUITE_P(Speeds, RigidWallImpact, ::testing::Values(0.1, 0.6, 0.99));
+INSTANTIATE_TEST_SUITE_P(Speeds, RigidWallImpact, ::testing::Values(0.1, 0.6, 0.99),
+                         [](const ::testing::TestParamInfo<double>& param) {
+                           return "v_" + std::to_string(static_cast<int>(std::lround(param.param * 100))) + "_percent_c";
+                         });
 
 TEST(RigidWallImpact, ReferenceValuesOfTheSpec) {
   const SceneRun r6 = run_yaml(wall_impact_scene("{model: rigid}", 0.6, 0.75));

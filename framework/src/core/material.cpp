@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "rigidity/number_text.hpp"
+
 namespace rigidity {
 
 double Material::stiffness(Stretch s) const {
@@ -19,17 +21,17 @@ std::string Material::admissibility_violation(Stretch s) const {
   }
   const StretchRange range = admissible();
   if (!range.contains(s)) {
-    os << "stretch " << s.value() << " is outside the admissible range [" << std::exp(range.log_min) << ", "
-       << std::exp(range.log_max) << "] of material '" << model() << "'";
+    os << "stretch " << shortest(s.value()) << " is outside the admissible range [" << shortest(std::exp(range.log_min))
+       << ", " << shortest(std::exp(range.log_max)) << "] of material '" << model() << "'";
     return os.str();
   }
   const double cs = sound_speed(s);
   if (!(cs > 0.0)) {
-    os << "material '" << model() << "' is not hyperbolic at stretch " << s.value() << " (sound speed " << cs << ")";
+    os << "material '" << model() << "' is not hyperbolic at stretch " << shortest(s.value()) << " (sound speed " << shortest(cs) << ")";
     return os.str();
   }
   if (!(cs <= 1.0)) {
-    os << "material '" << model() << "' is acausal at stretch " << s.value() << " (sound speed " << cs << " > c)";
+    os << "material '" << model() << "' is acausal at stretch " << shortest(s.value()) << " (sound speed " << shortest(cs) << " > c)";
     return os.str();
   }
   return "";

@@ -21,6 +21,7 @@
 
 #include "rigidity/chebyshev.hpp"
 #include "rigidity/errors.hpp"
+#include "rigidity/number_text.hpp"
 
 namespace rigidity {
 namespace {
@@ -395,7 +396,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 double value_or_throw(const Solved<Estimate>& r, std::string_view what, std::string_view model, Stretch s) {
   if (r.ok()) return r.value.value;
   throw NumericalError("material '" + std::string(model) + "': " + std::string(what) + " at stretch " +
-                       std::to_string(s.value()) + ": " + std::string(to_string(r.status)));
+                       shortest(s.value()) + ": " + std::string(to_string(r.status)));
 }
 
 }  // namespace
