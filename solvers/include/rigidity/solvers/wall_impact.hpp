@@ -1,0 +1,36 @@
+#pragma once
+/// The paper's experiment for any material: an unstrained bar strikes a fixed wall. What
+/// `rigidity compare` tabulates, and what a sweep or a script asks of a material without
+/// running a scene: the state behind the reflected front, the front's speed, and the impact
+/// speed that crushes the bar.
+#include <optional>
+
+#include "rigidity/material.hpp"
+#include "rigidity/status.hpp"
+
+namespace rigidity {
+
+struct Impact {
+  double v = 0.0;            ///< the bar's speed towards the wall
+  double s = 1.0;            ///< stretch behind the reflected front
+  double p = 0.0;            ///< pressure behind it
+  double front_speed = 0.0;  ///< the front's speed relative to the unstrained bar (in its rest frame)
+};
+
+/// An impact, or the status of the Riemann solver: out_of_range if the bar is crushed
+/// (no classical solution), anything else a numerical failure.
+struct ImpactOutcome {
+  Impact impact;
+  Status status = Status::ok;
+};
+
+/// An unstrained bar at speed v (0 < v < 1) strikes a fixed (push-only) wall on its right:
+/// the state behind the reflected front from the exact Riemann solver, and the front's speed
+/// relative to the unstrained bar.
+[[nodiscard]] ImpactOutcome wall_impact(const Material& material, double v);
+
+/// The impact speed from which on the bar is crushed (the state behind the front leaves the
+/// admissible range), if any.
+[[nodiscard]] std::optional<double> crush_speed(const Material& material);
+
+}  // namespace rigidity
