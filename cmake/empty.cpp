@@ -1,1 +1,0 @@
-// Placeholder translation unit for a part of the tree that has no sources yet.
