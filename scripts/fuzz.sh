@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh clang libclang-rt-14-dev
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 CC=clang CXX=clang++ cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRIGIDITY_SANITIZERS=ON \
-  -DRIGIDITY_BUILD_FUZZERS=ON -DRIGIDITY_BUILD_BENCHMARKS=OFF >/dev/null
+  -DRIGIDITY_BUILD_FUZZERS=ON -DRIGIDITY_BUILD_BENCHMARKS=OFF -DRIGIDITY_BUILD_PYTHON=OFF >/dev/null
 cmake --build build-sanitize -j2
 ctest --test-dir build-sanitize --output-on-failure -j2 --timeout 600 -LE install
 work=$(mktemp -d)

@@ -1,0 +1,118 @@
+"""rigidity: relativistic continuum mechanics in one dimension, from Python.
+
+    import rigidity
+    r = rigidity.run("configs/paper_wall_impact.yaml")   # a path, YAML text, or a dict
+    r.summary["conservation"]["energy_dissipated"]
+    t, p = r.probes["wall"]["p"]                         # NumPy arrays
+    m = rigidity.material("hooke", wave_speed=0.5)
+    m.p(numpy.linspace(0.5, 1.5, 11))                    # vectorised in C++
+
+Scenes run in the same process as the interpreter, with the GIL released while they are
+solved. Errors arrive as rigidity.InputError (a bad scene: the message names file, line and
+key), rigidity.InadmissibleError (a valid scene the physics refuses, e.g. a crushed body) and
+rigidity.NumericalError.
+"""
+
+import json as _json
+import os as _os
+
+from . import _rigidity
+
+InputError = _rigidity.InputError
+InadmissibleError = _rigidity.InadmissibleError
+NumericalError = _rigidity.NumericalError
+Material = _rigidity.Material
+
+__all__ = [
+    "run",
+    "Result",
+    "materials",
+    "material",
+    "riemann",
+    "load_plugin",
+    "Material",
+    "InputError",
+    "InadmissibleError",
+    "NumericalError",
+]
+
+
+class Result:
+    """A solved scene: `summary` as summary.json, and the outputs the scene asked for.
+
+    probes[name][quantity]  -> (t, value), two NumPy arrays
+    snapshots               -> dict of NumPy columns t, body, X, quantity, value
+    fronts                  -> dict of NumPy columns t0, x0, t1, x1, kind, family
+    events                  -> dict of NumPy columns t, kind, x, bodies
+    """
+
+    def __init__(self, run):
+        self._run = run
+        self.summary = _json.loads(run.summary_json)
+        self.probes = run.probes
+        self.snapshots = run.snapshots
+        self.fronts = run.fronts
+        self.events = run.events
+        self.warnings = list(run.warnings)
+        self.status = run.status
+
+    def __repr__(self):
+        return "<rigidity.Result %s status=%s t_end=%s>" % (
+            self.summary.get("scene"), self.status, self.summary.get("t_end"))
+
+
+def _overrides(set_):
+    out = []
+    for key, value in (set_ or {}).items():
+        out.append("%s=%s" % (key, _json.dumps(value) if not isinstance(value, str) else value))
+    return out
+
+
+def run(scene, set=None):  # noqa: A002 - the name of rigidity run's --set
+    """Runs a scene: a dict (as its YAML would read), YAML text, or the path of a scene file.
+
+    `set` overrides keys as `rigidity run --set` does: {"bodies.0.velocity": 0.8}.
+    """
+    overrides = _overrides(set)
+    if isinstance(scene, dict):
+        # JSON is YAML: the dict reaches the same strict loader as a file does.
+        return Result(_rigidity.run_text(_json.dumps(scene), "<dict>", overrides))
+    if isinstance(scene, _os.PathLike):
+        return Result(_rigidity.run_file(_os.fspath(scene), overrides))
+    if isinstance(scene, str):
+        if "\n" not in scene and (scene.endswith((".yaml", ".yml")) or _os.path.isfile(scene)):
+            return Result(_rigidity.run_file(scene, overrides))
+        return Result(_rigidity.run_text(scene, "<text>", overrides))
+    raise TypeError("rigidity.run takes a dict, YAML text or a path, not %s" % type(scene).__name__)
+
+
+def materials():
+    """The registered materials: name, doc, and parameters (name, doc, required, range, default)."""
+    return _rigidity.materials()
+
+
+def material(name, **parameters):
+    """A registered material built as a scene builds it (declared defaults, ranges, and a check
+    that it is hyperbolic and causal with these parameters). Its p, e, sound_speed, psi,
+    stretch_from_pressure and stretch_from_psi take NumPy arrays (NaN outside its range)."""
+    try:
+        return _rigidity.material(name, parameters)
+    except ValueError as error:  # std::invalid_argument: an unknown name or a bad parameter
+        raise InputError(str(error)) from None
+
+
+def riemann(left_material, left, right_material, right, min_pressure=None):
+    """The exact Riemann problem between two uniform states, each a dict {velocity, stretch}
+    (stretch 1 if left out). Sides that would pull harder than min_pressure part (default: the
+    larger cavitation pressure of the two materials, or no limit). Returns the star pressure,
+    whether the sides part, and the star state on each side."""
+    if min_pressure is None:
+        min_pressure = max(left_material.cavitation_pressure, right_material.cavitation_pressure)
+    return _rigidity.riemann(left_material, float(left.get("velocity", 0.0)), float(left.get("stretch", 1.0)),
+                             right_material, float(right.get("velocity", 0.0)), float(right.get("stretch", 1.0)),
+                             float(min_pressure))
+
+
+def load_plugin(path):
+    """Loads a material plugin (a shared library); returns the names of its materials."""
+    return _rigidity.load_plugin(_os.fspath(path))

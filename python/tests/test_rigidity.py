@@ -1,0 +1,193 @@
+"""The Python package against closed forms (SPEC §2, the paper's wall impact), not only
+that calls return: run, materials, the exact Riemann problem, errors, and the GIL."""
+
+import os
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import rigidity
+
+SOURCE = os.environ.get("RIGIDITY_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+PAPER = os.path.join(SOURCE, "configs", "paper_wall_impact.yaml")
+
+
+def wall_scene(model, v, t_end=0.75, **parameters):
+    material = {"model": model}
+    material.update(parameters)
+    return {
+        "name": "wall_impact",
+        "materials": {"m": material},
+        "bodies": [{"name": "bar", "material": "m", "position": 0.0, "length": 1.0, "velocity": v}],
+        "boundaries": {"left": {"type": "free"}, "right": {"type": "wall"}},
+        "time": {"end": t_end},
+        "outputs": {"probes": [{"name": "wall", "body": "bar", "at": "right", "quantities": ["p", "s", "v"],
+                                "every": 0.05}]},
+    }
+
+
+def test_the_paper_scene_from_its_file():
+    r = rigidity.run(PAPER)
+    assert r.status == "ok"
+    t, p = r.probes["wall"]["p"]
+    assert isinstance(t, np.ndarray) and t.shape == p.shape
+    # Behind the front p = 1.5 and s = 0.5 while the bar is on the wall (0 < t < 1).
+    on_wall = (t > 0.0) & (t < 1.0)
+    assert on_wall.sum() >= 15
+    np.testing.assert_allclose(p[on_wall], 1.5, rtol=1e-12)
+    _, s = r.probes["wall"]["s"]
+    np.testing.assert_allclose(s[on_wall], 0.5, rtol=1e-12)
+    # It leaves the wall unstrained at -v (footnote 2): momentum reversed, energy kept.
+    c = r.summary["conservation"]
+    assert c["momentum_final"] == pytest.approx(-c["momentum_initial"], rel=1e-12)
+    assert c["energy_final"] == pytest.approx(c["energy_initial"], rel=1e-12)
+    assert c["momentum_final"] - c["momentum_initial"] == pytest.approx(c["wall_impulse"], rel=1e-12)
+
+
+@pytest.mark.parametrize("v", [0.1, 0.5, 0.9])
+def test_rigid_wall_pressure_against_the_closed_form_for_a_dict_scene(v):
+    # s = sqrt((1 - v)/(1 + v)), p = (rho00/2)(1/s^2 - 1) = rho00 v/(1 - v)
+    r = rigidity.run(wall_scene("rigid", v, rest_density=2.0))
+    t, p = r.probes["wall"]["p"]
+    _, s = r.probes["wall"]["s"]
+    hit = (t > 0.0) & (t < 0.5)
+    np.testing.assert_allclose(p[hit], 2.0 * v / (1.0 - v), rtol=1e-12)
+    np.testing.assert_allclose(s[hit], np.sqrt((1.0 - v) / (1.0 + v)), rtol=1e-12)
+
+
+def test_set_overrides_keys_as_the_command_line_does():
+    r = rigidity.run(PAPER, set={"bodies.0.velocity": 0.8, "time.end": 0.8})
+    t, p = r.probes["wall"]["p"]
+    np.testing.assert_allclose(p[(t > 0) & (t < 0.6)], 4.0, rtol=1e-12)  # SPEC §2: p = 4 at v = 0.8
+    assert r.summary["t_end"] == pytest.approx(0.8)
+
+
+def test_snapshots_fronts_and_events_are_columns():
+    r = rigidity.run(PAPER)
+    snap = r.snapshots
+    n = len(snap["t"])
+    assert n > 0 and all(len(snap[k]) == n for k in ("body", "X", "quantity", "value"))
+    p_at_half = snap["value"][(snap["quantity"] == "p") & (snap["t"] == 0.5)]
+    np.testing.assert_allclose(p_at_half, 1.5, rtol=1e-12)  # the whole bar is stopped at t1 = 0.5
+    fronts = r.fronts
+    assert len(fronts["t0"]) > 0 and set(fronts["kind"]) <= {"shock", "contact", "rarefaction", "interface",
+                                                              "boundary"}
+    assert np.all(fronts["t1"] >= fronts["t0"])
+    # The bar starts on the wall and leaves it at 2 t1 = 1 (footnote 2).
+    assert list(r.events["kind"]) == ["separation"]
+    np.testing.assert_allclose(r.events["t"], [1.0], rtol=1e-12)
+
+
+def test_yaml_text_runs_too():
+    with open(PAPER) as f:
+        text = f.read()
+    r = rigidity.run(text)
+    assert r.summary["scene"] == "paper_wall_impact"
+
+
+def test_a_bad_scene_is_an_input_error_naming_line_and_key():
+    scene = wall_scene("rigid", 0.5)
+    scene["bodies"][0]["velocty"] = 0.5
+    with pytest.raises(rigidity.InputError) as error:
+        rigidity.run(scene)
+    assert "<dict>:1:" in str(error.value)
+    assert "velocty" in str(error.value) and "velocity" in str(error.value)
+
+
+def test_a_crushed_hooke_bar_is_inadmissible():
+    # SPEC §2: an impact at v >= V collapses a hooke bar: no classical solution.
+    with pytest.raises(rigidity.InadmissibleError):
+        rigidity.run(wall_scene("hooke", 0.6, wave_speed=0.5))
+
+
+def test_materials_lists_the_registry():
+    names = {m["name"] for m in rigidity.materials()}
+    assert {"rigid", "hooke", "rigid_fluid", "constant_sound_speed"} <= names
+    hooke = next(m for m in rigidity.materials() if m["name"] == "hooke")
+    assert any(p["name"] == "wave_speed" for p in hooke["parameters"])
+
+
+def test_material_laws_are_vectorised_and_match_the_spec():
+    s = np.linspace(0.3, 0.99, 50)
+    rigid = rigidity.material("rigid", rest_density=1.5)
+    np.testing.assert_allclose(rigid.p(s), 0.75 * (1.0 / s**2 - 1.0), rtol=1e-13)
+    np.testing.assert_allclose(rigid.sound_speed(s), 1.0, rtol=1e-14)
+    b = 0.5
+    hooke = rigidity.material("hooke", wave_speed=b)
+    R = np.sqrt(b**2 + (1 - b**2) / s**2)
+    e = (R - b**2) / (1 - b**2)
+    np.testing.assert_allclose(hooke.e(s), e, rtol=1e-13)
+    np.testing.assert_allclose(hooke.p(s), e / R - 1.0, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(hooke.sound_speed(s), np.sqrt(b**2 * s**2 / (b**2 * s**2 + 1 - b**2)), rtol=1e-13)
+    V = 0.4
+    gas = rigidity.material("constant_sound_speed", sound_speed=V)
+    np.testing.assert_allclose(gas.p(s), V**2 / (1 + V**2) * (s ** -(1 + V**2) - 1), rtol=1e-12)
+    # Inverses round-trip; a 2-d array keeps its shape.
+    grid = s.reshape(5, 10)
+    np.testing.assert_allclose(hooke.stretch_from_pressure(hooke.p(grid)), grid, rtol=1e-10)
+    np.testing.assert_allclose(gas.stretch_from_psi(gas.psi(grid)), grid, rtol=1e-12)
+    # Outside the admissible range: NaN, not a number that means nothing.
+    fluid = rigidity.material("rigid_fluid")
+    assert np.isnan(fluid.p(np.array([2.0]))[0])
+
+
+def test_a_bad_parameter_is_an_input_error():
+    with pytest.raises(rigidity.InputError):
+        rigidity.material("hooke", wave_speed=2.0)
+    with pytest.raises(rigidity.InputError):
+        rigidity.material("no_such_model")
+
+
+def test_riemann_matches_the_symmetric_collision_and_parts_a_fluid():
+    rigid = rigidity.material("rigid")
+    sol = rigidity.riemann(rigid, {"velocity": 0.6}, rigid, {"velocity": -0.6})
+    assert sol["pressure"] == pytest.approx(1.5, rel=1e-12)
+    assert sol["left"]["stretch"] == pytest.approx(0.5, rel=1e-12)
+    assert sol["left"]["velocity"] == pytest.approx(0.0, abs=1e-14)
+    fluid = rigidity.material("rigid_fluid")
+    apart = rigidity.riemann(fluid, {"velocity": -0.3}, fluid, {"velocity": 0.3})
+    assert apart["parted"] and apart["pressure"] == 0.0
+    assert apart["left"]["velocity"] == pytest.approx(-0.3, rel=1e-12)
+
+
+def test_wall_impact_and_crush_speed():
+    hooke = rigidity.material("hooke", wave_speed=0.5)
+    impact = hooke.wall_impact(0.2)
+    assert impact["s"] == pytest.approx(0.6123724357, rel=1e-9)  # SPEC §2 reference values
+    assert impact["p"] == pytest.approx(0.1111111111, rel=1e-9)
+    assert impact["front_speed"] == pytest.approx(0.5, rel=1e-12)
+    assert hooke.crush_speed() == pytest.approx(0.5, rel=1e-12)
+    assert hooke.wall_impact(0.6) is None
+    assert rigidity.material("rigid").crush_speed() is None
+
+
+def test_a_solve_releases_the_gil():
+    # 400 Hooke segments ringing between bonded walls: long enough to watch another thread run.
+    segments = [{"length": 0.01, "velocity": 0.2 if k % 2 == 0 else -0.2} for k in range(400)]
+    scene = {
+        "name": "ringing",
+        "materials": {"soft": {"model": "hooke", "wave_speed": 0.5}},
+        "bodies": [{"name": "bar", "material": "soft", "segments": segments}],
+        "boundaries": {"left": {"type": "wall", "bonded": True}, "right": {"type": "wall", "bonded": True}},
+        "time": {"end": 60.0},
+    }
+    done = threading.Event()
+    ticks = [0]
+
+    def count():
+        while not done.is_set():
+            ticks[0] += 1
+            time.sleep(0.001)
+
+    counter = threading.Thread(target=count)
+    start = time.perf_counter()
+    counter.start()
+    rigidity.run(scene)
+    elapsed = time.perf_counter() - start
+    done.set()
+    counter.join()
+    assert elapsed > 0.05, "the scene should take a while"
+    # With the GIL held the counter could not tick while the scene was solved.
+    assert ticks[0] > 0.2 * elapsed / 0.0011
