@@ -51,7 +51,31 @@ Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch 
   // A compression (Ψ grows as s falls, c_s > 0) slows the state behind a C− shock (it moves
   // against the family's direction).
   const double direction = star.log() < outer.stretch.log() ? family : -family;
-  return Solved<double>{outer.rapidity + direction * relative, Status::ok};
+  double phi = outer.rapidity + direction * relative;
+
+  // The lab frame: g(φ) = [p][τ] + [v][M] = 0 with τ = s/cosh φ, v = tanh φ, M = w s sinh φ.
+  const double phi0 = outer.rapidity, ch0 = std::cosh(phi0);
+  const double tau0 = s0 / ch0, momentum0 = (m.enthalpy_density(outer.stretch)) * s0 * std::sinh(phi0);
+  const double log_ratio = star.log() - outer.stretch.log();
+  for (int step = 0; step < 8; ++step) {
+    const double ch = std::cosh(phi), sh = std::sinh(phi);
+    // cosh φ0 / cosh φ − 1 = 2 sinh((φ0 + φ)/2) sinh((φ0 − φ)/2) / cosh φ
+    const double cosh_ratio = std::log1p(2.0 * std::sinh(0.5 * (phi0 + phi)) * std::sinh(0.5 * (phi0 - phi)) / ch);
+    const double dtau = tau0 * std::expm1(log_ratio + cosh_ratio);
+    const double dv = std::sinh(phi - phi0) / (ch0 * ch);
+    const double dm = w * s * sh - momentum0;
+    const double g = dp * dtau + dv * dm;
+    const double slope = -dp * s * sh / (ch * ch) + dm / (ch * ch) + dv * w * s * ch;
+    if (!(slope != 0.0) || !std::isfinite(g)) break;
+    const double delta = g / slope;
+    phi -= delta;
+    // Newton's next error is about δ² g''/(2 g'), with g''/g' of the order of 1/(the jump in
+    // rapidity): below round-off, no further step is needed (one, for a weak shock, whose
+    // closed-form start is off by a third-order term only).
+    if (delta * delta <= 4.0 * kEps * (1.0 + std::abs(phi)) * std::max(relative, 1e-300)) break;
+  }
+  if (!std::isfinite(phi)) return Solved<double>::failure(Status::not_converged);
+  return Solved<double>{phi, Status::ok};
 }
 
 Solved<double> curve_rapidity(const Material& m, const State& outer, double psi_outer, double outer_speed, double z,

@@ -24,10 +24,15 @@ double wave_strength(const Material& m, const State& a, const State& b, int fami
 FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b, int family);
 
 /// The rapidity of the state at stretch `star` that a shock of family `family` connects to
-/// `outer`, in closed form. In the rest frame of the outer state the label and momentum jump
-/// conditions, with u = γv of the star, give Δp s0 γ = s (Δp + w u²) (w = e + p at the star),
-/// a quadratic in Y = u²/Δp:  s²w² Y² + (2 s² w − Δp s0²) Y + (s² − s0²) = 0,
-/// whose root of the sign of Δp is taken in its stable form. Rapidities add along the line.
+/// `outer`. The jump conditions hold in the lab frame (SPEC §1: m [τ] = −[v], m [M] = [p]);
+/// since a shock of an elastic material dissipates energy, the momentum condition alone is
+/// not Lorentz covariant, and the outer state's rest frame gives a slightly different curve
+/// unless the outer state is at rest in the lab (third order in the strength). So: first the
+/// rest-frame closed form, where the conditions with u = γv of the star give
+/// Δp s0 γ = s (Δp + w u²) (w = e + p at the star), a quadratic in Y = u²/Δp,
+/// s²w² Y² + (2 s² w − Δp s0²) Y + (s² − s0²) = 0, whose root of the sign of Δp is taken in
+/// its stable form (rapidities add along the line); then Newton steps on the lab-frame
+/// condition [p][τ] + [v][M] = 0, with [τ] and [v] free of cancellation, to round-off.
 Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch star, int family);
 
 /// The rapidity at stretch e^z on the wave curve of family `family` through `outer`: the
