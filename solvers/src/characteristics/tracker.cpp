@@ -148,12 +148,12 @@ RunResult Tracker::run() {
   // (their span in Ψ)/tolerance steps: a genuinely nonlinear body costs ~1/tolerance² per
   // crossing.
   for (;;) {
-    while (!queue_.empty() && !valid(queue_.top())) queue_.pop();
+    while (!queue_.empty() && !valid(queue_.front())) pop_event();
     // The earliest of the next rare event and the next meeting (ties in the order scheduled).
     const bool rare_first =
-        !queue_.empty() && (meetings_.empty() || queue_.top().t < meetings_.top().t ||
-                            (queue_.top().t == meetings_.top().t && queue_.top().seq < meetings_.top().seq));
-    const double t_event = rare_first ? queue_.top().t : meetings_.empty() ? kInf : meetings_.top().t;
+        !queue_.empty() && (meetings_.empty() || queue_.front().t < meetings_.top().t ||
+                            (queue_.front().t == meetings_.top().t && queue_.front().seq < meetings_.top().seq));
+    const double t_event = rare_first ? queue_.front().t : meetings_.empty() ? kInf : meetings_.top().t;
     if (samples_.next_time() < t_event) {
       sample(samples_.pop());
       continue;
@@ -161,8 +161,8 @@ RunResult Tracker::run() {
     if (t_event > scene_.t_end) break;
     if (recorder_.poll(t_event, live_fronts_, result_.stats.interactions)) break;  // a budget, Ctrl-C; progress
     if (rare_first) {
-      const Event e = queue_.top();
-      queue_.pop();
+      const Event e = queue_.front();
+      pop_event();
       handle(e);
     } else {
       const MeetingQueue::Entry m = meetings_.top();

@@ -11,7 +11,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <queue>
 #include <memory>
 #include <string>
 #include <vector>
@@ -177,8 +176,22 @@ class Tracker {
   }
 
   // ---- events -----------------------------------------------------------------------
+  /// A rare event: into a binary heap whose superseded entries (an end that moved again
+  /// before its gap closed) are dropped when they reach the top, or all at once when they
+  /// outnumber the pieces, so the heap stays as small as the scene (the cleaning is paid
+  /// for by the pushes that made it necessary).
   void push(double t, EventType type, int a, int b, std::uint32_t va, std::uint32_t vb) {
-    queue_.push(Event{t, seq_++, type, a, b, va, vb});
+    queue_.push_back(Event{t, seq_++, type, a, b, va, vb});
+    std::push_heap(queue_.begin(), queue_.end(), EventLater{});
+    if (queue_.size() > 2 * pieces_.size() + 64) {
+      queue_.erase(std::remove_if(queue_.begin(), queue_.end(), [this](const Event& e) { return !valid(e); }),
+                   queue_.end());
+      std::make_heap(queue_.begin(), queue_.end(), EventLater{});
+    }
+  }
+  void pop_event() {
+    std::pop_heap(queue_.begin(), queue_.end(), EventLater{});
+    queue_.pop_back();
   }
   bool valid(const Event& e) const;
   void schedule_meet(int a);
@@ -281,7 +294,7 @@ class Tracker {
   std::vector<Piece> pieces_;
   std::vector<int> order_;  ///< pieces in lab order, left to right
   Wall walls_[2];
-  std::priority_queue<Event, std::vector<Event>, EventLater> queue_;  ///< rare events: gaps, pistons, t = 0
+  std::vector<Event> queue_;  ///< rare events (a heap, EventLater): gaps, pistons, t = 0
   MeetingQueue meetings_;                                              ///< fronts meeting fronts, ends, interfaces
   std::uint64_t seq_ = 0;
   long live_fronts_ = 0;
