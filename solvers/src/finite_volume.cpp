@@ -819,6 +819,10 @@ RunResult Scheme::run() {
       mass_velocity += rest_mass * std::tanh(state_[k].rapidity);
       r.energy += width_[k] * energy_density(*material_[k], state_[k]);
       r.momentum += width_[k] * u_[k][1];
+      const EnergyParts parts = energy_parts(*material_[k], state_[k]);
+      r.kinetic_energy += width_[k] * parts.kinetic;
+      r.internal_energy += width_[k] * parts.internal;
+      r.rest_energy += width_[k] * parts.rest;
     }
     r.velocity_mean = mass > 0.0 ? mass_velocity / mass : 0.0;
     result_.bodies.push_back(r);

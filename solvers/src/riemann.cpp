@@ -677,6 +677,17 @@ double momentum_density(const Material& m, const State& st) {
   return m.enthalpy_density(st.stretch) * st.stretch.value() * std::sinh(st.rapidity);
 }
 
+EnergyParts energy_parts(const Material& m, const State& st) {
+  const double s = st.stretch.value();
+  const double half = std::sinh(0.5 * st.rapidity);
+  EnergyParts parts;
+  parts.kinetic = s * (m.energy_density(st.stretch) * 2.0 * half * half +
+                       m.pressure(st.stretch) * std::sinh(st.rapidity) * std::tanh(st.rapidity));
+  parts.internal = m.strain_energy(st.stretch) - m.rest_density();
+  parts.rest = m.rest_density();
+  return parts;
+}
+
 double energy_density(const Material& m, const State& st) {
   // ((e+p)γ² − p) s/γ = (e+p) s cosh φ − p s / cosh φ
   const double s = st.stretch.value();

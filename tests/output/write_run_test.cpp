@@ -146,7 +146,8 @@ TEST_F(WriteRun, SummaryHasTheLayoutOfTheSpec) {
   EXPECT_EQ(event["bodies"][0].string, "bar");
 
   const mini_json::Value& bar = doc["bodies"][0];
-  EXPECT_EQ(bar.keys(), (std::vector<std::string>{"name", "x_left", "x_right", "velocity_mean", "momentum", "energy"}));
+  EXPECT_EQ(bar.keys(), (std::vector<std::string>{"name", "x_left", "x_right", "velocity_mean", "momentum", "energy",
+                                                 "kinetic_energy", "internal_energy", "rest_energy"}));
   EXPECT_EQ(bar["velocity_mean"].number, -0.6);
   EXPECT_EQ(bar["energy"].number, 1.25);
 

@@ -114,6 +114,9 @@ std::string summary_json(const Scene& scene, const RunResult& result) {
     w.member("velocity_mean", body.velocity_mean, Dimension::velocity);
     w.member("momentum", body.momentum, Dimension::momentum_per_area);
     w.member("energy", body.energy, Dimension::energy_per_area);
+    w.member("kinetic_energy", body.kinetic_energy, Dimension::energy_per_area);
+    w.member("internal_energy", body.internal_energy, Dimension::energy_per_area);
+    w.member("rest_energy", body.rest_energy, Dimension::energy_per_area);
     json.end_object();
   }
   json.end_array();

@@ -231,6 +231,10 @@ RunResult Tracker::run() {
         mass_velocity += m.rest_density() * dX * std::tanh(node.right.state.rapidity);
         r.energy += dX * energy_density(m, node.right.state);
         r.momentum += dX * momentum_density(m, node.right.state);
+        const EnergyParts split = energy_parts(m, node.right.state);
+        r.kinetic_energy += dX * split.kinetic;
+        r.internal_energy += dX * split.internal;
+        r.rest_energy += dX * split.rest;
       }
       r.velocity_mean = mass > 0.0 ? mass_velocity / mass : 0.0;
       result_.bodies.push_back(r);

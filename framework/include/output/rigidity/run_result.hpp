@@ -27,6 +27,11 @@ struct BodyResult {
   double velocity_mean = 0.0;       ///< weighted by rest mass
   double momentum = 0.0;            ///< per unit area
   double energy = 0.0;              ///< per unit area, rest energy included
+  // Its parts, each computed on its own scale (not as differences of the total, whose
+  // round-off can exceed them: a steel bar at 10 m/s has 5e-16 of its energy as motion).
+  double kinetic_energy = 0.0;      ///< energy − the same body at rest in the same strain
+  double internal_energy = 0.0;     ///< elastic: W(s) − ρ00 per unit natural length
+  double rest_energy = 0.0;         ///< ρ00 c² per unit natural length
 };
 
 struct Conservation {

@@ -129,6 +129,13 @@ struct FrontSpeeds {
 [[nodiscard]] double label_density(const State& state);
 [[nodiscard]] double momentum_density(const Material& material, const State& state);
 [[nodiscard]] double energy_density(const Material& material, const State& state);
+/// energy_density split into its parts per unit label, each on its own scale: kinetic
+/// s [e (cosh φ − 1) + p sinh φ tanh φ] (with cosh φ − 1 = 2 sinh²(φ/2)), internal
+/// W(s) − ρ00 and rest ρ00; they add up to energy_density.
+struct EnergyParts {
+  double kinetic = 0.0, internal = 0.0, rest = 0.0;
+};
+[[nodiscard]] EnergyParts energy_parts(const Material& material, const State& state);
 
 /// Does nothing for a solved problem; otherwise throws InadmissibleError for out_of_range (no
 /// classical solution: the message names the impact speed, the material (solution.material, else
