@@ -420,6 +420,8 @@ int run_command(std::span<const std::string> args, std::ostream& out) {
     if (progress) progress->clear();
     files.commit(result);
     wall_probe = recorder.wall_probe();
+  } catch (const OutputRefused& e) {
+    throw CommandError(kExitInvalidInput, std::string(e.what()) + "; nothing was run");
   } catch (const OutputError& e) {
     throw CommandError(kExitInternal, "cannot write the outputs: " + std::string(e.what()));
   }

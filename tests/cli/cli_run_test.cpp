@@ -131,12 +131,22 @@ TEST_F(CliTest, RunOfASceneFileNamesItsOutputAfterTheScene) {
   EXPECT_FALSE(contains(r.out, "against the paper"));  // only for the default scene
 }
 
-TEST_F(CliTest, RunReplacesAnEarlierRunWhole) {
+TEST_F(CliTest, RunReplacesAnEarlierRunAndKeepsTheUsersFiles) {
+  // The default scene writes fronts.csv; the re-run without fronts must not leave the old
+  // one behind, and must leave a notebook and a folder of the user's exactly as they were.
   ASSERT_EQ(rigidity("run --out run").exit_status, 0);
-  std::ofstream(dir() / "run" / "stale.csv") << "old\n";
-  ASSERT_EQ(rigidity("run --out run").exit_status, 0);
-  EXPECT_FALSE(fs::exists(dir() / "run" / "stale.csv"));
-  EXPECT_TRUE(fs::exists(dir() / "run" / "summary.json"));
+  ASSERT_TRUE(fs::exists(dir() / "run" / "fronts.csv"));
+  const std::string old_summary = read_text(dir() / "run" / "summary.json");
+  std::ofstream(dir() / "run" / "analysis.ipynb") << "{\"cells\": []}\n";
+  fs::create_directories(dir() / "run" / "figures");
+  std::ofstream(dir() / "run" / "figures" / "mine.svg") << "<svg/>\n";
+  ASSERT_EQ(rigidity("run --out run --set outputs.fronts=false --set bodies.0.velocity=0.8").exit_status, 0);
+  EXPECT_FALSE(fs::exists(dir() / "run" / "fronts.csv")) << "a file of the earlier run outlived it";
+  EXPECT_NE(read_text(dir() / "run" / "summary.json"), old_summary);
+  EXPECT_EQ(read_text(dir() / "run" / "analysis.ipynb"), "{\"cells\": []}\n");
+  EXPECT_EQ(read_text(dir() / "run" / "figures" / "mine.svg"), "<svg/>\n");
+  for (const auto& entry : fs::directory_iterator(dir()))  // no temporary or old sibling left
+    EXPECT_EQ(entry.path().filename().string().find("run."), std::string::npos) << entry.path();
 }
 
 TEST_F(CliTest, RunOfAnInvalidSceneExitsTwoAndWritesNothing) {
@@ -262,13 +272,16 @@ TEST_F(CliTest, CtrlCStopsARunCleanlyWithTheOutputsSoFarAndExits130) {
   EXPECT_FALSE(started());  // renamed into place
 }
 
-TEST_F(CliTest, RunRefusesToReplaceADirectoryThatIsNotARun) {
+TEST_F(CliTest, RunRefusesADirectoryThatIsNotARunAsInvalidInputBeforeSolving) {
   fs::create_directories(dir() / "precious");
   std::ofstream(dir() / "precious" / "notes.txt") << "keep me\n";
   const CliOutcome r = rigidity("run --out precious");
-  EXPECT_EQ(r.exit_status, 1);
+  EXPECT_EQ(r.exit_status, 2);
   EXPECT_TRUE(contains(r.err, "precious"));
+  EXPECT_TRUE(contains(r.err, "nothing was run"));
+  EXPECT_FALSE(contains(r.out, "bodies at")) << "it solved before refusing";
   EXPECT_EQ(read_text(dir() / "precious" / "notes.txt"), "keep me\n");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir() / "precious"), fs::directory_iterator{}), 1);
 }
 
 }  // namespace

@@ -320,17 +320,22 @@ TEST_F(WriteRun, ConversionOverflowToInfinityIsRefused) {
   EXPECT_NO_THROW(write_run(wall_impact_scene(UnitSystem::natural), result, (base_ / "run").string()));
 }
 
-TEST_F(WriteRun, AnExistingRunIsReplacedWhole) {
+TEST_F(WriteRun, AnExistingRunIsReplacedAndOnlyItsOwnFilesGo) {
   const fs::path dir = base_ / "run";
   fs::create_directories(dir / "nested");
   std::ofstream(dir / "summary.json") << "{\"old\": true}\n";
   std::ofstream(dir / "probes.csv") << "old\n";
-  std::ofstream(dir / "nested" / "stale.txt") << "old\n";
+  std::ofstream(dir / "xt.png") << "old plot\n";
+  std::ofstream(dir / "nested" / "mine.txt") << "the user's\n";
+  std::ofstream(dir / "notes.md") << "the user's\n";
 
   Scene scene = wall_impact_scene();
   scene.outputs = OutputsDecl{};  // the new run has no probes: the old probes.csv must go too
   write_run(scene, wall_impact_result(), dir.string());
-  EXPECT_EQ(entries(dir), (std::vector<std::string>{"events.csv", "resolved_scene.yaml", "summary.json"}));
+  EXPECT_EQ(entries(dir), (std::vector<std::string>{"events.csv", "nested", "notes.md", "resolved_scene.yaml",
+                                                    "summary.json"}));
+  EXPECT_EQ(read_file(dir / "notes.md"), "the user's\n");
+  EXPECT_EQ(read_file(dir / "nested" / "mine.txt"), "the user's\n");
   EXPECT_EQ(entries(base_), std::vector<std::string>{"run"});
   EXPECT_EQ(mini_json::parse(read_file(dir / "summary.json"))["scene"].string, "wall_impact");
 }

@@ -140,14 +140,28 @@ fs::path output_path(const std::string& dir) {
 
 /// Refuses to replace anything but an earlier run's output (or an empty directory):
 /// `--out ~` must not wipe a home directory.
+}  // namespace
+
+bool is_run_file(std::string_view name) {
+  static constexpr std::string_view kRunFiles[] = {
+      "summary.json", "events.csv",  "probes.csv", "snapshots.csv", "fronts.csv",   "resolved_scene.yaml",
+      "xt.png",       "probes.png",  "snapshots.png", "xt.gp",      "probes.gp",    "snapshots.gp"};
+  for (std::string_view file : kRunFiles)
+    if (name == file) return true;
+  return false;
+}
+
+namespace {
+
 void check_replaceable(const fs::path& target) {
   const fs::file_status status = fs::status(target);
   if (!fs::exists(status)) return;
   if (!fs::is_directory(status))
-    throw OutputError("output directory " + target.string() + " exists and is not a directory");
+    throw OutputRefused("output directory " + target.string() + " exists and is not a directory");
   if (!fs::is_empty(target) && !fs::exists(target / "summary.json"))
-    throw OutputError("refusing to replace " + target.string() +
-                      ": it is not empty and holds no earlier run (no summary.json)");
+    throw OutputRefused("refusing to write a run into " + target.string() +
+                        ": it is not empty and holds no earlier run (no summary.json); give --out an empty "
+                        "or new directory");
 }
 
 /// A sibling of `target` named "<target>.<tag>-XXXXXX" that does not exist yet.
@@ -185,24 +199,49 @@ class TemporaryDirectory {
 
   [[nodiscard]] const fs::path& path() const { return path_; }
 
-  /// Renames the directory to `target`, replacing what is there. At every moment
-  /// `target` is the complete old run, absent, or the complete new run.
+  /// Renames the directory to `target`, replacing the earlier run there. The files there
+  /// that are not a run's own (is_run_file) move into the new run first, so they stay. At
+  /// every moment `target` holds the complete old run or the complete new run (or is absent
+  /// for the instant of the swap), and a failure puts every moved file back.
   void commit(const fs::path& target) {
     if (!fs::exists(fs::symlink_status(target))) {
       fs::rename(path_, target);
-    } else {
-      const fs::path old = unused_sibling(target, "old");
-      fs::rename(target, old);
-      try {
-        fs::rename(path_, target);
-      } catch (...) {
-        std::error_code ignored;
-        fs::rename(old, target, ignored);
-        throw;
-      }
-      std::error_code ignored;
-      fs::remove_all(old, ignored);
+      path_.clear();
+      return;
     }
+    std::vector<std::string> kept;  // the user's files, moved into the new run
+    const auto move_back = [&] {
+      std::error_code ignored;
+      for (const std::string& name : kept) fs::rename(path_ / name, target / name, ignored);
+    };
+    try {
+      for (const fs::directory_entry& entry : fs::directory_iterator(target)) {
+        const std::string name = entry.path().filename().string();
+        if (is_run_file(name)) continue;
+        fs::rename(entry.path(), path_ / name);
+        kept.push_back(name);
+      }
+    } catch (...) {
+      move_back();
+      throw;
+    }
+    const fs::path old = unused_sibling(target, "old");
+    try {
+      fs::rename(target, old);
+    } catch (...) {
+      move_back();
+      throw;
+    }
+    try {
+      fs::rename(path_, target);
+    } catch (...) {
+      std::error_code ignored;
+      fs::rename(old, target, ignored);
+      move_back();
+      throw;
+    }
+    std::error_code ignored;
+    fs::remove_all(old, ignored);
     path_.clear();
   }
 

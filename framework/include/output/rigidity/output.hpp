@@ -9,6 +9,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "rigidity/run_recorder.hpp"
 #include "rigidity/run_result.hpp"
@@ -21,6 +22,18 @@ class OutputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+/// The output directory given cannot take a run (a file, or a directory of other things
+/// that holds no earlier run): invalid input, found before anything is solved.
+class OutputRefused : public OutputError {
+ public:
+  using OutputError::OutputError;
+};
+
+/// The files a run (and `rigidity plot` of it) writes into its directory. Re-running into
+/// the directory replaces these; every other file there (a notebook, a figure of one's own)
+/// stays.
+[[nodiscard]] bool is_run_file(std::string_view name);
 
 /// Streams a run's outputs to disk as the solver produces them: CSV rows go through
 /// a buffer into a temporary sibling of `dir`, so memory does not grow with the run.
