@@ -26,7 +26,7 @@ struct Command {
 };
 
 constexpr Command kCommands[] = {
-    {"run", "rigidity run [SCENE.yaml] [--out DIR] [--set key.path=value ...] [--quiet]",
+    {"run", "rigidity run [SCENE.yaml] [--out DIR] [--set key.path=value ...] [--quiet] [--print-scene]",
      "evolve a scene and write its outputs (no SCENE: the paper's wall impact)",
      "Loads and validates SCENE (the embedded paper_wall_impact scene if none is given),\n"
      "evolves it to its end time and writes summary.json, events.csv, the CSV files its\n"
@@ -42,11 +42,14 @@ constexpr Command kCommands[] = {
      "what to change.\n"
      "\n"
      "options:\n"
-     "  --out DIR              output directory (default out/<scene name>); an earlier run\n"
-     "                         there is replaced as a whole\n"
+     "  --out DIR              output directory (default out/<scene name>); an earlier run's\n"
+     "                         files there are replaced, any other file there stays\n"
      "  --set key.path=value   override a scene value before validation, e.g.\n"
-     "                         --set bodies.0.velocity=0.8 (repeatable)\n"
-     "  --quiet                print nothing but errors (no summary, warnings or progress)\n",
+     "                         --set bodies.0.velocity=0.8 (repeatable); a time.end set\n"
+     "                         shorter drops the snapshot times beyond it, with a note\n"
+     "  --quiet                print nothing but errors (no summary, notes, warnings or progress)\n"
+     "  --print-scene          print the scene as it would run (every default filled in)\n"
+     "                         and exit without running it\n",
      run_command},
     {"validate", "rigidity validate SCENE.yaml [--set key.path=value ...]", "check a scene file without running it",
      "Loads SCENE with every rule of the scene schema and reports the first error as\n"
@@ -55,6 +58,16 @@ constexpr Command kCommands[] = {
      "options:\n"
      "  --set key.path=value   override a scene value before validation (repeatable)\n",
      validate_command},
+    {"schema", "rigidity schema [--json] [--si]", "list every scene key: type, default, unit, range, doc",
+     "Prints every key a scene file may hold, from the one declaration the loader checks\n"
+     "scenes against: its type, whether it is required or its default, its unit, its range\n"
+     "and its doc, nested as in a scene; the keys each registered material model adds to\n"
+     "its entry under materials are listed under it.\n"
+     "\n"
+     "options:\n"
+     "  --json                 one row per key, by path (bodies.*.velocity), as JSON\n"
+     "  --si                   defaults and ranges in SI units (m, s, kg/m^3, Pa, m/s)\n",
+     schema_command},
     {"materials", "rigidity materials [NAME] [--json]",
      "list the registered materials: parameters, units, ranges and docs",
      "Lists every registered material (or only NAME) with its documentation and each of\n"

@@ -386,7 +386,7 @@ class InterruptHandler {
 }  // namespace
 
 int run_command(std::span<const std::string> args, std::ostream& out) {
-  static constexpr OptionSpec kOptions[] = {{"--out", true}, {"--set", true, true}, {"--quiet"}};
+  static constexpr OptionSpec kOptions[] = {{"--out", true}, {"--set", true, true}, {"--quiet"}, {"--print-scene"}};
   const Arguments parsed = parse_arguments("run", args, kOptions);
   if (parsed.help) {
     out << help("run");
@@ -400,6 +400,12 @@ int run_command(std::span<const std::string> args, std::ostream& out) {
   const bool default_scene = parsed.positional.empty();
   const Scene scene = default_scene ? load_scene_string(default_scene_text(), "<default>", overrides)
                                     : load_scene_file(parsed.positional[0], overrides);
+  if (!quiet)
+    for (const std::string& note : scene.notes) std::cerr << "note: " << note << "\n";
+  if (parsed.has("--print-scene")) {
+    out << scene.resolved_yaml;  // the scene as it would run, every default filled in; nothing is run
+    return kExitOk;
+  }
   const std::string dir =
       parsed.value("--out").value_or("out/" + (scene.name.empty() ? std::string("scene") : scene.name));
 

@@ -1,5 +1,6 @@
 // The command line: help, version, usage errors and `rigidity materials` (SPEC §4).
 #include <algorithm>
+#include <map>
 #include <set>
 #include <string>
 
@@ -157,6 +158,70 @@ TEST_F(CliTest, UnknownMaterialExitsTwoWithTheClosestMatch) {
   EXPECT_TRUE(contains(r.err, "'hoke'"));
   EXPECT_TRUE(contains(r.err, "did you mean 'hooke'"));
   EXPECT_TRUE(r.out.empty());
+}
+
+TEST_F(CliTest, SchemaListsEveryKeyFromTheOneDeclaration) {
+  const CliOutcome text = rigidity("schema");
+  ASSERT_EQ(text.exit_status, 0) << text.err;
+  for (const char* key : {"name:", "materials:", "bodies:", "boundaries:", "solver:", "time:", "outputs:",
+                          "tolerance:", "wave_speed:", "# with model: hooke"})
+    EXPECT_TRUE(contains(text.out, key)) << key;
+  const CliOutcome json = rigidity("schema --json");
+  ASSERT_EQ(json.exit_status, 0) << json.err;
+  const mini_json::Value doc = mini_json::parse(json.out);
+  std::map<std::string, const mini_json::Value*> rows;
+  for (const mini_json::Value& row : doc["keys"].array) rows[row["path"].string] = &row;
+  ASSERT_TRUE(rows.count("bodies.*.velocity"));
+  EXPECT_EQ((*rows["bodies.*.velocity"])["unit"].string, "c");
+  EXPECT_EQ((*rows["bodies.*.velocity"])["range"].string, "(-1, 1)");
+  EXPECT_EQ((*rows["bodies.*.velocity"])["default"].string, "0");
+  ASSERT_TRUE(rows.count("materials.<name>.wave_speed"));
+  EXPECT_EQ((*rows["materials.<name>.wave_speed"])["model"].string, "hooke");
+  EXPECT_TRUE((*rows["materials.<name>.wave_speed"])["required"].boolean);
+  ASSERT_TRUE(rows.count("time.end"));
+  EXPECT_TRUE((*rows["time.end"])["required"].boolean);
+  // In SI units the same key reads in m/s.
+  const mini_json::Value si = mini_json::parse(rigidity("schema --json --si").out);
+  for (const mini_json::Value& row : si["keys"].array) {
+    if (row["path"].string == "bodies.*.velocity") {
+      EXPECT_EQ(row["unit"].string, "m/s");
+    }
+  }
+}
+
+TEST_F(CliTest, PrintSceneShowsTheSceneAsItWouldRunAndRunsNothing) {
+  const CliOutcome r = rigidity("run --print-scene --set bodies.0.velocity=0.8 --out never");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "name: paper_wall_impact"));
+  EXPECT_TRUE(contains(r.out, "velocity: 0.8"));
+  EXPECT_FALSE(fs::exists(dir() / "never"));
+  // What it prints is a scene that validates as it stands.
+  write_file("printed.yaml", r.out);
+  const CliOutcome v = rigidity("validate printed.yaml");
+  EXPECT_EQ(v.exit_status, 0) << v.err;
+}
+
+TEST_F(CliTest, ASetThatShortensTheRunDropsLaterSnapshotTimesWithANote) {
+  // The default scene snapshots at 0.25, 0.5 and 0.75; ending at 0.3 keeps 0.25 only.
+  const CliOutcome r = rigidity("run --set time.end=0.3 --out short");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_TRUE(contains(r.err, "note: outputs.snapshots.0: times 0.5, 0.75 dropped")) << r.err;
+  const std::string snapshots = read_text(dir() / "short" / "snapshots.csv");
+  EXPECT_TRUE(contains(snapshots, "\n0.25,"));
+  EXPECT_FALSE(contains(snapshots, "\n0.5,"));
+  EXPECT_TRUE(contains(read_text(dir() / "short" / "resolved_scene.yaml"), "times: [0.25]"));
+  // Ending before every snapshot drops the snapshot; the scene file itself asking for a
+  // time beyond its end stays an error.
+  const CliOutcome none = rigidity("run --set time.end=0.1 --out shorter");
+  ASSERT_EQ(none.exit_status, 0) << none.err;
+  EXPECT_TRUE(contains(none.err, "outputs.snapshots.0 dropped"));
+  EXPECT_FALSE(fs::exists(dir() / "shorter" / "snapshots.csv"));
+  write_file("late.yaml",
+             "name: late\nmaterials: {m: {model: rigid}}\nbodies: [{name: b, material: m, length: 1}]\n"
+             "time: {end: 1}\noutputs: {snapshots: [{times: [2], quantities: [p]}]}\n");
+  const CliOutcome late = rigidity("run late.yaml --out late");
+  EXPECT_EQ(late.exit_status, 2);
+  EXPECT_TRUE(contains(late.err, "late.yaml:5:32: error: key 'outputs.snapshots.0.times.0'")) << late.err;
 }
 
 }  // namespace

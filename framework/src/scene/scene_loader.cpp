@@ -331,12 +331,73 @@ bool load_listed_plugins(const YAML::Node& root, const schema::Key& schema, cons
   return false;
 }
 
+/// True if an override sets time.end (or the whole time map).
+bool overrides_time_end(const std::vector<std::string>& overrides) {
+  for (const std::string& assignment : overrides) {
+    const std::string key = assignment.substr(0, assignment.find('='));
+    if (key == "time" || key == "time.end") return true;
+  }
+  return false;
+}
+
+/// An override that ends the run earlier than the scene file does drops the snapshot times
+/// beyond the new end (a snapshot left without times goes), in the tree, so that
+/// resolved_scene.yaml is the scene as run; what went is said in the returned notes. A
+/// scene file that itself asks for a time beyond its end stays an error.
+std::vector<std::string> clip_snapshots_to_end(YAML::Node& root) {
+  std::vector<std::string> notes;
+  const YAML::Node end_node = std::as_const(root)["time"]["end"];
+  double end = 0.0;
+  if (!end_node.IsScalar() || !YAML::convert<double>::decode(end_node, end)) return notes;  // the checker says why
+  const YAML::Node snapshots = std::as_const(root)["outputs"]["snapshots"];
+  if (!snapshots.IsSequence()) return notes;
+  YAML::Node kept_snapshots(YAML::NodeType::Sequence);
+  for (std::size_t i = 0; i < snapshots.size(); ++i) {
+    YAML::Node snapshot = snapshots[i];
+    const YAML::Node times = snapshot.IsMap() ? std::as_const(snapshot)["times"] : YAML::Node();
+    if (!times.IsSequence()) {
+      kept_snapshots.push_back(snapshot);
+      continue;
+    }
+    YAML::Node kept_times(YAML::NodeType::Sequence);
+    std::string dropped;
+    for (const YAML::Node& t : times) {
+      double value = 0.0;
+      if (t.IsScalar() && YAML::convert<double>::decode(t, value) && value > end) {
+        dropped += (dropped.empty() ? "" : ", ") + t.Scalar();
+      } else {
+        kept_times.push_back(t);
+      }
+    }
+    if (dropped.empty()) {
+      kept_snapshots.push_back(snapshot);
+      continue;
+    }
+    const std::string which = "outputs.snapshots." + std::to_string(i);
+    if (kept_times.size() == 0) {
+      notes.push_back(which + " dropped: all its times (" + dropped + ") are beyond time.end = " + end_node.Scalar() +
+                      " set on the command line");
+      continue;
+    }
+    snapshot["times"] = kept_times;
+    kept_snapshots.push_back(snapshot);
+    notes.push_back(which + ": times " + dropped + " dropped, beyond time.end = " + end_node.Scalar() +
+                    " set on the command line");
+  }
+  root["outputs"]["snapshots"] = kept_snapshots;
+  return notes;
+}
+
 Scene load(std::string_view text, const std::string& source, const std::vector<std::string>& overrides,
            const std::filesystem::path& directory) {
   Sources sources(source);
   try {
     YAML::Node root = detail::parse_scene_text(text, source);
     for (const std::string& assignment : overrides) sources.apply_override(root, assignment);
+    std::vector<std::string> notes;
+    if (overrides_time_end(overrides) && root.IsMap() && std::as_const(root)["outputs"].IsMap() &&
+        std::as_const(root)["time"].IsMap())
+      notes = clip_snapshots_to_end(root);
     load_environment_plugins();  // RIGIDITY_PLUGIN_PATH, before the schema lists the registered models
     schema::Key schema = schema::scene_schema();
     const UnitSystem units = read_units(root, schema, sources);
@@ -345,6 +406,7 @@ Scene load(std::string_view text, const std::string& source, const std::vector<s
     Checked checked = checker.check(root, schema, {}, root.Mark());
     Scene scene = SceneBuilder(checker, sources, units, directory).build(checked);
     scene.resolved_yaml = detail::emit_resolved(checked, units);
+    scene.notes = std::move(notes);
     return scene;
   } catch (const YAML::Exception& e) {
     // Walking a tree yaml-cpp has built should not throw; if it does, the input is at fault.

@@ -354,6 +354,37 @@ std::string kind_text(const Key& k) {
   return "?";
 }
 
+std::string default_text(const Key& k, UnitSystem units) {
+  if (const auto* d = std::get_if<double>(&k.fallback)) return detail::format_number(from_natural(*d, k.dimension, units));
+  if (const auto* b = std::get_if<bool>(&k.fallback)) return *b ? "true" : "false";
+  if (const auto* w = std::get_if<std::string>(&k.fallback)) return *w;
+  return k.derived_default;
+}
+
+/// Rows for k (whose path is `path`) and everything under it.
+void flatten_into(std::vector<KeyRow>& rows, const Key& k, UnitSystem units, const std::string& path,
+                  const std::string& model) {
+  KeyRow row;
+  row.path = path;
+  row.type = kind_text(k);
+  row.required = k.required;
+  row.default_value = default_text(k, units);
+  if (k.dimension != Dimension::dimensionless) row.unit = std::string(unit_symbol(k.dimension, units));
+  row.range = k.range_text(units);
+  row.model = model;
+  row.doc = k.doc;
+  rows.push_back(row);
+  const auto child_path = [&](const Key& f) {
+    if (!f.name.empty()) return path + "." + f.name;
+    return path + (k.kind == Kind::dictionary ? ".<name>" : ".*");  // a list's entries, a dictionary's names
+  };
+  for (const Key& f : k.fields) flatten_into(rows, f, units, child_path(f), model);
+  if (k.extension) {
+    for (const std::string& m : MaterialRegistry::instance().names())
+      for (const Key& f : k.extension->fields(m)) flatten_into(rows, f, units, child_path(f), m);
+  }
+}
+
 void describe_into(std::ostringstream& out, const Key& k, UnitSystem units, int depth) {
   out << std::string(static_cast<std::size_t>(2 * depth), ' ') << (k.name.empty() ? "-" : k.name) << ": "
       << kind_text(k);
@@ -372,6 +403,15 @@ void describe_into(std::ostringstream& out, const Key& k, UnitSystem units, int 
   if (k.only_if) out << ", only with " << k.only_if->sibling;
   out << "  # " << k.doc << "\n";
   for (const Key& f : k.fields) describe_into(out, f, units, depth + 1);
+  if (k.extension) {
+    for (const std::string& m : MaterialRegistry::instance().names()) {
+      const std::vector<Key> more = k.extension->fields(m);
+      if (more.empty()) continue;
+      out << std::string(static_cast<std::size_t>(2 * (depth + 1)), ' ') << "# with " << k.extension->selector
+          << ": " << m << "\n";
+      for (const Key& f : more) describe_into(out, f, units, depth + 1);
+    }
+  }
 }
 
 }  // namespace
@@ -380,6 +420,12 @@ std::string describe(const Key& key, UnitSystem units) {
   std::ostringstream out;
   describe_into(out, key, units, 0);
   return out.str();
+}
+
+std::vector<KeyRow> flatten(const Key& key, UnitSystem units) {
+  std::vector<KeyRow> rows;
+  for (const Key& f : key.fields) flatten_into(rows, f, units, f.name, "");
+  return rows;
 }
 
 }  // namespace rigidity::schema

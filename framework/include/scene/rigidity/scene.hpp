@@ -105,6 +105,7 @@ struct Scene {
   double t_end = 1.0;
   OutputsDecl outputs;
   std::string resolved_yaml;             ///< the scene as run, every default filled in, in the scene's units
+  std::vector<std::string> notes;        ///< what the loader changed for an override (outputs beyond a shorter end)
 
   [[nodiscard]] const Material& material_of(const Segment& seg) const { return *materials.at(seg.material).material; }
 };

@@ -135,7 +135,23 @@ struct Key {
 [[nodiscard]] Key scene_schema();
 
 /// One line per key, indented by nesting: name, type, default, units, range, doc.
-/// What `rigidity validate --help`-style documentation prints.
+/// What `rigidity schema` prints.
 [[nodiscard]] std::string describe(const Key& key, UnitSystem units = UnitSystem::natural);
+
+/// Every key of a schema as a flat row, by its path (`bodies.*.velocity`; list entries are
+/// `*`, a dictionary's names `<name>`), the keys each material model adds included
+/// (`materials.<name>.wave_speed`, with `model` saying which). What `rigidity schema --json`
+/// lists.
+struct KeyRow {
+  std::string path;
+  std::string type;
+  bool required = false;
+  std::string default_value;  ///< "" if none
+  std::string unit;           ///< "" if dimensionless
+  std::string range;          ///< "" if unbounded
+  std::string model;          ///< the material model that adds the key, else ""
+  std::string doc;
+};
+[[nodiscard]] std::vector<KeyRow> flatten(const Key& key, UnitSystem units = UnitSystem::natural);
 
 }  // namespace rigidity::schema
