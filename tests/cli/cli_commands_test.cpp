@@ -224,5 +224,20 @@ TEST_F(CliTest, ASetThatShortensTheRunDropsLaterSnapshotTimesWithANote) {
   EXPECT_TRUE(contains(late.err, "late.yaml:5:32: error: key 'outputs.snapshots.0.times.0'")) << late.err;
 }
 
+TEST_F(CliTest, TheDefaultToleranceRunsAGenuinelyNonlinearBarClean) {
+  // The paper's scene with a constant_sound_speed bar: a shock, then a fan from the free end.
+  // The default tolerance asks for exactness where waves are jumps and the finest fans the
+  // step cap allows: no warning; asking for 1e-12 explicitly is told it was not reached.
+  const std::string gas =
+      "run --set materials.rigid_steel.model=constant_sound_speed --set materials.rigid_steel.sound_speed=0.5 "
+      "--set bodies.0.velocity=0.3 ";
+  const CliOutcome quiet_default = rigidity(gas + "--out gas");
+  ASSERT_EQ(quiet_default.exit_status, 0) << quiet_default.err;
+  EXPECT_FALSE(contains(quiet_default.err, "warning")) << quiet_default.err;
+  const CliOutcome asked = rigidity(gas + "--set solver.tolerance=1e-12 --out gas_asked");
+  ASSERT_EQ(asked.exit_status, 0) << asked.err;
+  EXPECT_TRUE(contains(asked.err, "warning: rarefaction fans were split into at most")) << asked.err;
+}
+
 }  // namespace
 }  // namespace rigidity::testing

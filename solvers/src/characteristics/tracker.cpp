@@ -240,7 +240,7 @@ RunResult Tracker::run() {
       result_.bodies.push_back(r);
     }
   }
-  if (fan_capped_) {
+  if (fan_capped_ && scene_.solver.tolerance_given) {  // the default asks for no more than the cap gives
     result_.warnings.push_back("rarefaction fans were split into at most " + std::to_string(kMaxFanSteps) +
                                " steps: coarser than solver.tolerance = " + number(scene_.solver.tolerance));
   }

@@ -62,6 +62,9 @@ enum class FluxType { hll, exact };
 struct SolverDecl {
   SolverMethod method = SolverMethod::characteristics;
   double tolerance = 1.0e-12;   ///< characteristics: target accuracy (fan step in Ψ)
+  /// False for the default: exact where the physics allows (linearly degenerate waves), and
+  /// elsewhere the finest fans the step cap allows, with the error bound reported, not warned of.
+  bool tolerance_given = false;
   long max_fronts = 1000000;    ///< characteristics: most fronts alive at once; beyond, the run stops (status stopped)
   long max_interactions = 100000000;  ///< characteristics: most interactions of a run; beyond, the run stops
   int cells = 400;              ///< finite volume
