@@ -131,6 +131,20 @@ time: {end: 1.0e-4}
   EXPECT_NEAR(bar.rest_energy, 7850.0 * 2.0, 1e-12 * 7850.0 * 2.0);
 }
 
+TEST(ExtremeImpact, AStateDoublePrecisionCannotCarryIsInadmissibleNotNoise) {
+  // A gas with c_s = 0.01 c hit at γ = 1e150 would be compressed to s = exp(−700) at
+  // p = 1e300: beyond double precision, reported as such (exit 3), not run on as noise.
+  const Scene scene = load_scene_string(
+      wall_impact_scene("{model: constant_sound_speed, sound_speed: 0.01}", 0.5, 1.0) , "<test>",
+      {"bodies.0={name: bar, material: m, position: 0, length: 1, gamma: 1.0e150}", "solver.tolerance=1e-3"});
+  try {
+    (void)solve(scene);
+    FAIL() << "ran on";
+  } catch (const InadmissibleError& e) {
+    EXPECT_NE(std::string(e.what()).find("no state double precision can carry"), std::string::npos) << e.what();
+  }
+}
+
 TEST(RigidWallImpact, ReferenceValuesOfTheSpec) {
   const SceneRun r6 = run_yaml(wall_impact_scene("{model: rigid}", 0.6, 0.75));
   expect_relative(probe_extreme(r6.result, Quantity::p, true), 1.5, 1e-12, "p at v = 0.6");

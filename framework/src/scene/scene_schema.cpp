@@ -145,12 +145,18 @@ std::vector<Key> uniform_state_keys(const std::string& requires_key) {
   };
   return {
       applies(velocity("velocity", "uniform initial velocity (lab frame, +x to the right)").defaults_to(0.0)),
+      // Pressures behind an impact grow as γ² (the rigid law: p = ρ00 v/(1 − v) ≈ 2 ρ00 γ²), so
+      // γ ≤ 1e150 keeps them within double precision (1.8e308); softer materials that would
+      // still overflow are stopped by the solver with that reason (exit 3).
       applies(Key::number("rapidity", "uniform initial rapidity phi = artanh v, for ultra-relativistic bodies")
-                  .at_least(-700.0)
-                  .at_most(700.0)
-                  .because("gamma = cosh(phi) must stay finite")),
-      applies(
-          Key::number("gamma", "uniform initial Lorentz factor, moving in `direction`").at_least(1.0).at_most(1.0e300)),
+                  .at_least(-345.0)
+                  .at_most(345.0)
+                  .because("gamma = cosh(phi) <= 1e150: pressures behind an impact grow as gamma^2 and must "
+                           "stay within double precision")),
+      applies(Key::number("gamma", "uniform initial Lorentz factor, moving in `direction`")
+                  .at_least(1.0)
+                  .at_most(1.0e150)
+                  .because("pressures behind an impact grow as gamma^2 and must stay within double precision")),
       Key::number("direction", "direction of motion for `gamma`: +1 (to +x) or -1")
           .one_of_values({-1.0, 1.0})
           .defaults_to(1.0)

@@ -67,7 +67,7 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     if (!parting.ok() || psi_star < memo_->psi(*m, parting.value)) return false;
   }
   const Solved<Stretch> star_stretch = memo_->stretch_at_psi(*m, psi_star);
-  if (!star_stretch.ok()) return false;
+  if (!star_stretch.ok() || !representable(star_stretch.value)) return false;  // resolved in full, and reported
   State star{0.5 * (j_plus + j_minus), star_stretch.value};
 
   // The outgoing waves: kinds, and for shocks their distance from the exact Hugoniot.

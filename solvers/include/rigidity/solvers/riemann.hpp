@@ -144,6 +144,12 @@ struct EnergyParts {
 /// naming the place (t, x) of the interaction. Numbers are printed in shortest round-trip form.
 void require_solved(const RiemannSolution& solution, const Material& material, double t, double x);
 
+/// ln s within which a stretch, its inverse and the pressures of the built-in laws stay
+/// within double precision: s in [1e-300, 1e300].
+inline constexpr double kRepresentableLogStretch = 690.0;
+/// True if s lies within that range.
+[[nodiscard]] bool representable(Stretch s);
+
 /// A shock between an outer state and a star state (same material), family -1 or +1.
 [[nodiscard]] FrontSpeeds shock_speeds(const Material& material, const State& outer, const State& star, int family);
 
