@@ -75,8 +75,7 @@ double distance(const Run& a, const Run& b) {
   for (const Run* r : {&a, &b}) {
     auto& target = r == &a ? va : vb;
     std::map<std::pair<int, double>, double> v, s;
-    for (const SnapshotSample& x : r->result.snapshots)
-      (x.quantity == Quantity::v ? v : s)[{x.body, x.X}] = x.value;
+    for (const SnapshotSample& x : r->result.snapshots) (x.quantity == Quantity::v ? v : s)[{x.body, x.X}] = x.value;
     for (const auto& [key, velocity] : v) {
       const Material& m = r->scene.material_of(r->scene.bodies[key.first].segments.front());
       target[key] = {std::atanh(velocity), m.riemann_psi(Stretch::from_value(s.at(key)))};
@@ -91,7 +90,8 @@ double distance(const Run& a, const Run& b) {
       if (key.first != static_cast<int>(body) || vb.count(key) == 0) continue;
       e.push_back(std::abs(state.first - vb.at(key).first) + std::abs(state.second - vb.at(key).second));
     }
-    for (std::size_t k = 0; k + 1 < e.size(); ++k) integral += 0.5 * (e[k] + e[k + 1]) * l0 / static_cast<double>(e.size() - 1);
+    for (std::size_t k = 0; k + 1 < e.size(); ++k)
+      integral += 0.5 * (e[k] + e[k + 1]) * l0 / static_cast<double>(e.size() - 1);
   }
   return integral / length;
 }

@@ -235,18 +235,13 @@ std::map<std::pair<double, int>, BodySamples> collect(const rigidity::RunResult&
   for (const rigidity::SnapshotSample& smp : r.snapshots) {
     BodySamples& b = out[{smp.t, smp.body}];
     switch (smp.quantity) {
-      case rigidity::Quantity::x:
-        b.x.push_back(smp.value);
-        break;
+      case rigidity::Quantity::x: b.x.push_back(smp.value); break;
       case rigidity::Quantity::s:
         b.s.push_back(smp.value);
         b.X.push_back(smp.X);
         break;
-      case rigidity::Quantity::gamma:
-        b.gamma.push_back(smp.value);
-        break;
-      default:
-        break;
+      case rigidity::Quantity::gamma: b.gamma.push_back(smp.value); break;
+      default: break;
     }
   }
   return out;

@@ -123,8 +123,7 @@ void print_summary(std::ostream& out, const Scene& scene, const RunResult& resul
   Table bodies({"name", units.label("x_left", Dimension::length), units.label("x_right", Dimension::length),
                 units.label("velocity_mean", Dimension::velocity),
                 units.label("momentum", Dimension::momentum_per_area),
-                units.label("kinetic", Dimension::energy_per_area),
-                units.label("internal", Dimension::energy_per_area),
+                units.label("kinetic", Dimension::energy_per_area), units.label("internal", Dimension::energy_per_area),
                 units.label("rest", Dimension::energy_per_area)});
   for (const BodyResult& b : result.bodies)
     bodies.add({b.name, units(b.x_left, Dimension::length), units(b.x_right, Dimension::length),

@@ -242,8 +242,7 @@ PYBIND11_MODULE(_rigidity, m) {
   });
 
   py::class_<Run>(m, "Run")
-      .def_property_readonly("summary_json",
-                             [](const Run& r) { return rigidity::summary_json(r.scene, r.result); })
+      .def_property_readonly("summary_json", [](const Run& r) { return rigidity::summary_json(r.scene, r.result); })
       .def_property_readonly("probes", &probes)
       .def_property_readonly("snapshots", &snapshots)
       .def_property_readonly("fronts", &fronts)
@@ -252,8 +251,7 @@ PYBIND11_MODULE(_rigidity, m) {
       .def_property_readonly("status", [](const Run& r) { return r.result.status; });
 
   m.def("run_file", &run_file, py::arg("path"), py::arg("overrides") = std::vector<std::string>{});
-  m.def("run_text", &run_text, py::arg("text"), py::arg("source"),
-        py::arg("overrides") = std::vector<std::string>{});
+  m.def("run_text", &run_text, py::arg("text"), py::arg("source"), py::arg("overrides") = std::vector<std::string>{});
 
   m.def("materials", [] {
     py::list out;
@@ -294,34 +292,41 @@ PYBIND11_MODULE(_rigidity, m) {
                                const rigidity::StretchRange r = mat.admissible();
                                return py::make_tuple(std::exp(r.log_min), std::exp(r.log_max));
                              })
-      .def("p", [](const Material& mat, const py::array_t<double, py::array::forcecast>& s) {
-        return over_stretches(mat, s, [&mat](Stretch st) { return mat.pressure(st); });
-      })
-      .def("e", [](const Material& mat, const py::array_t<double, py::array::forcecast>& s) {
-        return over_stretches(mat, s, [&mat](Stretch st) { return mat.energy_density(st); });
-      })
-      .def("sound_speed", [](const Material& mat, const py::array_t<double, py::array::forcecast>& s) {
-        return over_stretches(mat, s, [&mat](Stretch st) { return mat.sound_speed(st); });
-      })
-      .def("psi", [](const Material& mat, const py::array_t<double, py::array::forcecast>& s) {
-        return over_stretches(mat, s, [&mat](Stretch st) { return mat.riemann_psi(st); });
-      })
-      .def("stretch_from_pressure", [](const Material& mat, const py::array_t<double, py::array::forcecast>& p) {
-        return inverse(p, [&mat](double v) { return mat.stretch_at_pressure(v); });
-      })
-      .def("stretch_from_psi", [](const Material& mat, const py::array_t<double, py::array::forcecast>& psi) {
-        return inverse(psi, [&mat](double v) { return mat.stretch_at_psi(v); });
-      })
-      .def("wall_impact", [](const Material& mat, double v) -> py::object {
-        const rigidity::ImpactOutcome r = rigidity::wall_impact(mat, v);
-        if (r.status != rigidity::Status::ok) return py::none();
-        py::dict d;
-        d["v"] = r.impact.v;
-        d["s"] = r.impact.s;
-        d["p"] = r.impact.p;
-        d["front_speed"] = r.impact.front_speed;
-        return d;
-      })
+      .def("p",
+           [](const Material& mat, const py::array_t<double, py::array::forcecast>& s) {
+             return over_stretches(mat, s, [&mat](Stretch st) { return mat.pressure(st); });
+           })
+      .def("e",
+           [](const Material& mat, const py::array_t<double, py::array::forcecast>& s) {
+             return over_stretches(mat, s, [&mat](Stretch st) { return mat.energy_density(st); });
+           })
+      .def("sound_speed",
+           [](const Material& mat, const py::array_t<double, py::array::forcecast>& s) {
+             return over_stretches(mat, s, [&mat](Stretch st) { return mat.sound_speed(st); });
+           })
+      .def("psi",
+           [](const Material& mat, const py::array_t<double, py::array::forcecast>& s) {
+             return over_stretches(mat, s, [&mat](Stretch st) { return mat.riemann_psi(st); });
+           })
+      .def("stretch_from_pressure",
+           [](const Material& mat, const py::array_t<double, py::array::forcecast>& p) {
+             return inverse(p, [&mat](double v) { return mat.stretch_at_pressure(v); });
+           })
+      .def("stretch_from_psi",
+           [](const Material& mat, const py::array_t<double, py::array::forcecast>& psi) {
+             return inverse(psi, [&mat](double v) { return mat.stretch_at_psi(v); });
+           })
+      .def("wall_impact",
+           [](const Material& mat, double v) -> py::object {
+             const rigidity::ImpactOutcome r = rigidity::wall_impact(mat, v);
+             if (r.status != rigidity::Status::ok) return py::none();
+             py::dict d;
+             d["v"] = r.impact.v;
+             d["s"] = r.impact.s;
+             d["p"] = r.impact.p;
+             d["front_speed"] = r.impact.front_speed;
+             return d;
+           })
       .def("crush_speed", [](const Material& mat) -> py::object {
         const std::optional<double> v = rigidity::crush_speed(mat);
         if (!v) return py::none();

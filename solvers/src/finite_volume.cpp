@@ -90,7 +90,6 @@ struct Body {
   bool cavitated = false;              ///< some cell was clamped at the parting stretch in the last step
 };
 
-
 /// Slopes of the Riemann invariants J± per unit label.
 struct InvariantSlopes {
   double plus = 0.0, minus = 0.0;
@@ -295,7 +294,6 @@ void Scheme::build_walls() {
     junctions_[j].in_contact = junctions_[j].touching;
   }
 }
-
 
 // =====================================================================================
 // one step

@@ -70,7 +70,6 @@ Conserved conserved(const Material& m, const State& st) {
 
 Flux flux(const Material& m, const State& st) { return Flux{-std::tanh(st.rapidity), m.pressure(st.stretch)}; }
 
-
 Recovered recover_state(const Material& m, const Conserved& u, double rapidity_guess) {
   const double labels = u[0], momentum = u[1];
   if (!(labels > 0.0) || !std::isfinite(labels) || !std::isfinite(momentum)) return failed(Status::out_of_range);
@@ -150,9 +149,8 @@ Recovered recover_state(const Material& m, const Conserved& u, double rapidity_g
     }
     double next = phi - residual / dg;
     if (!(next > lo && next < hi)) next = hi_known ? 0.5 * (lo + hi) : std::min(2.0 * std::max(phi, 0.5), hi);
-    const bool converged =
-        std::abs(next - phi) <= 2.0 * kEps * std::abs(next) + std::numeric_limits<double>::min() ||
-        (hi_known && hi - lo <= 2.0 * kEps * hi);
+    const bool converged = std::abs(next - phi) <= 2.0 * kEps * std::abs(next) + std::numeric_limits<double>::min() ||
+                           (hi_known && hi - lo <= 2.0 * kEps * hi);
     phi = next;
     if (converged) return Recovered{State{sign * phi, curve.stretch(phi)}, Status::ok, false};
   }

@@ -706,8 +706,8 @@ void require_solved(const RiemannSolution& sol, const Material& material, double
         std::abs(sol.pressure) < 1e300)
       return;
     const Material& m = sol.material != nullptr ? *sol.material : material;
-    const Stretch extreme = std::abs(sol.left.stretch.log()) > std::abs(sol.right.stretch.log()) ? sol.left.stretch
-                                                                                                  : sol.right.stretch;
+    const Stretch extreme =
+        std::abs(sol.left.stretch.log()) > std::abs(sol.right.stretch.log()) ? sol.left.stretch : sol.right.stretch;
     throw InadmissibleError("no state double precision can carry at t = " + shortest(t) + ", x = " + shortest(x) +
                             ": material '" + std::string(m.model()) + "' would reach s = exp(" +
                             shortest(extreme.log()) + ") and p = " + shortest(sol.pressure) +
@@ -820,8 +820,7 @@ Solved<double> shock_dissipation_rate(const Material& m, const State& left, cons
   // and each θ-derivative brings a factor of the jump, so 8 points per half are exact to
   // round-off up to |[ln s]| = 0.3 (measured: 4 points leave 1e-9 at 0.15), and 4 points
   // are below 0.03, where the weak shocks of crossings and fan steps live.
-  static constexpr double kNode8[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
-                                       0.9602898564975363};
+  static constexpr double kNode8[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
   static constexpr double kWeight8[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
                                          0.1012285362903763};
   static constexpr double kNode4[2] = {0.3399810435848563, 0.8611363115940526};

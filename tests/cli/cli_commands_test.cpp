@@ -89,8 +89,7 @@ TEST_F(CliTest, MalformedOptionsExitTwo) {
 
 // ---- rigidity materials ------------------------------------------------------------
 
-const std::set<std::string> kBuiltInMaterials = {"constant_sound_speed", "hooke", "rigid", "rigid_fluid",
-                                                   "tabulated"};
+const std::set<std::string> kBuiltInMaterials = {"constant_sound_speed", "hooke", "rigid", "rigid_fluid", "tabulated"};
 
 TEST_F(CliTest, MaterialsJsonListsTheBuiltInMaterials) {
   const CliOutcome r = rigidity("materials --json");
@@ -163,8 +162,8 @@ TEST_F(CliTest, UnknownMaterialExitsTwoWithTheClosestMatch) {
 TEST_F(CliTest, SchemaListsEveryKeyFromTheOneDeclaration) {
   const CliOutcome text = rigidity("schema");
   ASSERT_EQ(text.exit_status, 0) << text.err;
-  for (const char* key : {"name:", "materials:", "bodies:", "boundaries:", "solver:", "time:", "outputs:",
-                          "tolerance:", "wave_speed:", "# with model: hooke"})
+  for (const char* key : {"name:", "materials:", "bodies:", "boundaries:", "solver:", "time:", "outputs:", "tolerance:",
+                          "wave_speed:", "# with model: hooke"})
     EXPECT_TRUE(contains(text.out, key)) << key;
   const CliOutcome json = rigidity("schema --json");
   ASSERT_EQ(json.exit_status, 0) << json.err;

@@ -82,7 +82,6 @@ const std::map<std::string, std::string>* impact_row(const Csv& csv, const std::
   return nullptr;
 }
 
-
 // ---- materials.csv ----------------------------------------------------------------------
 
 TEST_F(CliTest, CompareWritesOneRowPerMaterial) {

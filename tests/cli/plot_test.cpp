@@ -11,7 +11,6 @@
 namespace rigidity::testing {
 namespace {
 
-
 /// A run of the default scene (the paper's wall impact: probes, snapshots and fronts) in dir()/run.
 class PlotTest : public CliTest {
  protected:

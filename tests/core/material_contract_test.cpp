@@ -75,7 +75,7 @@ constexpr double kRoundTripUlps = 64.0;
 struct MaterialCase {
   std::string model;
   std::map<std::string, double> values;
-  std::string label;  ///< test-name suffix
+  std::string label;                         ///< test-name suffix
   std::map<std::string, std::string> texts;  ///< required texts (kTextSamples); default: the first sample
 };
 

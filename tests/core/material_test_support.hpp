@@ -84,7 +84,8 @@ double central_difference(F&& f, double t, double h) {
 
 /// Ψ(s) = ∫_{ln s}^0 c_s dτ by GSL QAG, independently of the material's own Ψ; by QAGP, told of
 /// them, across `breaks` (ln s where c_s has a kink: a table's rows).
-inline double reference_psi(const Material& material, Stretch s, double epsrel, const std::vector<double>& breaks = {}) {
+inline double reference_psi(const Material& material, Stretch s, double epsrel,
+                            const std::vector<double>& breaks = {}) {
   if (s.log() == 0.0) return 0.0;
   gsl_set_error_handler_off();
   auto integrand = [](double tau, void* params) {

@@ -85,14 +85,10 @@ class ClosedFormLaw final : public Law<Real> {
 
   [[nodiscard]] std::string name() const override {
     switch (model_) {
-      case Model::rigid:
-        return "rigid";
-      case Model::hooke:
-        return "hooke";
-      case Model::rigid_fluid:
-        return "rigid_fluid";
-      case Model::constant_sound_speed:
-        return "constant_sound_speed";
+      case Model::rigid: return "rigid";
+      case Model::hooke: return "hooke";
+      case Model::rigid_fluid: return "rigid_fluid";
+      case Model::constant_sound_speed: return "constant_sound_speed";
     }
     return "?";
   }
@@ -102,10 +98,8 @@ class ClosedFormLaw final : public Law<Real> {
   [[nodiscard]] Real pressure(Real s) const override {
     switch (model_) {
       case Model::rigid:
-      case Model::rigid_fluid:
-        return rho_ / 2 * (1 / (s * s) - 1);  // p = (ρ00/2)(1/s² − 1)
-      case Model::hooke:
-        return energy_density(s) / r(s) - rho_;  // p = e/R − ρ00
+      case Model::rigid_fluid: return rho_ / 2 * (1 / (s * s) - 1);  // p = (ρ00/2)(1/s² − 1)
+      case Model::hooke: return energy_density(s) / r(s) - rho_;     // p = e/R − ρ00
       case Model::constant_sound_speed: {
         const Real k = 1 + b_ * b_;  // p = ρ00 V²/(1 + V²) (s^−(1+V²) − 1)
         return rho_ * b_ * b_ / k * (std::pow(s, -k) - 1);
@@ -116,12 +110,9 @@ class ClosedFormLaw final : public Law<Real> {
 
   [[nodiscard]] Real energy_density(Real s) const override {
     switch (model_) {
-      case Model::rigid:
-        return rho_ / 2 * (1 / (s * s) + 1);  // e = (ρ00/2)(1/s² + 1)
-      case Model::rigid_fluid:
-        return rho_ + pressure(s);  // e = ρ00 + p
-      case Model::hooke:
-        return rho_ * (r(s) - b_ * b_) / (1 - b_ * b_);  // e = ρ00 (R − b²)/(1 − b²)
+      case Model::rigid: return rho_ / 2 * (1 / (s * s) + 1);             // e = (ρ00/2)(1/s² + 1)
+      case Model::rigid_fluid: return rho_ + pressure(s);                 // e = ρ00 + p
+      case Model::hooke: return rho_ * (r(s) - b_ * b_) / (1 - b_ * b_);  // e = ρ00 (R − b²)/(1 − b²)
       case Model::constant_sound_speed: {
         // dp/de = V² with e = ρ00 at p = 0: e = ρ00 + p/V²
         return rho_ + pressure(s) / (b_ * b_);
@@ -133,12 +124,9 @@ class ClosedFormLaw final : public Law<Real> {
   [[nodiscard]] Real sound_speed(Real s) const override {
     switch (model_) {
       case Model::rigid:
-      case Model::rigid_fluid:
-        return 1;
-      case Model::hooke:
-        return std::sqrt(b_ * b_ * s * s / (b_ * b_ * s * s + 1 - b_ * b_));
-      case Model::constant_sound_speed:
-        return b_;
+      case Model::rigid_fluid: return 1;
+      case Model::hooke: return std::sqrt(b_ * b_ * s * s / (b_ * b_ * s * s + 1 - b_ * b_));
+      case Model::constant_sound_speed: return b_;
     }
     return 0;
   }
@@ -148,14 +136,12 @@ class ClosedFormLaw final : public Law<Real> {
   [[nodiscard]] Real psi(Real s) const override {
     switch (model_) {
       case Model::rigid:
-      case Model::rigid_fluid:
-        return -std::log(s);
+      case Model::rigid_fluid: return -std::log(s);
       case Model::hooke: {
         const Real a = std::sqrt(1 - b_ * b_);
         return std::asinh(b_ / a) - std::asinh(b_ * s / a);
       }
-      case Model::constant_sound_speed:
-        return -b_ * std::log(s);
+      case Model::constant_sound_speed: return -b_ * std::log(s);
     }
     return 0;
   }
@@ -171,14 +157,10 @@ class ClosedFormLaw final : public Law<Real> {
   }
   [[nodiscard]] Real max_tension() const override {
     switch (model_) {
-      case Model::rigid:
-        return -rho_ / 2;
-      case Model::rigid_fluid:
-        return 0;
-      case Model::hooke:
-        return -rho_ * b_ / (1 + b_);  // R → b as s → ∞
-      case Model::constant_sound_speed:
-        return -rho_ * b_ * b_ / (1 + b_ * b_);
+      case Model::rigid: return -rho_ / 2;
+      case Model::rigid_fluid: return 0;
+      case Model::hooke: return -rho_ * b_ / (1 + b_);  // R → b as s → ∞
+      case Model::constant_sound_speed: return -rho_ * b_ * b_ / (1 + b_ * b_);
     }
     return 0;
   }
@@ -190,8 +172,7 @@ class ClosedFormLaw final : public Law<Real> {
     if (!(p > max_tension() || (model_ == Model::rigid_fluid && p == 0)) || !(p < max_pressure())) return nan;
     switch (model_) {
       case Model::rigid:
-      case Model::rigid_fluid:
-        return 1 / std::sqrt(1 + 2 * p / rho_);
+      case Model::rigid_fluid: return 1 / std::sqrt(1 + 2 * p / rho_);
       case Model::hooke: {
         const Real a2 = 1 - b_ * b_, R = b_ * b_ / (b_ * b_ - a2 * p / rho_);
         return std::sqrt(a2 / (R * R - b_ * b_));
@@ -207,17 +188,14 @@ class ClosedFormLaw final : public Law<Real> {
   /// Inverse of Ψ(s): e^−Ψ, e^−Ψ/V, and (a/b) sinh(asinh(b/a) − Ψ) for hooke.
   [[nodiscard]] Real stretch_at_psi(Real target) const override {
     switch (model_) {
-      case Model::rigid:
-        return std::exp(-target);
-      case Model::rigid_fluid:
-        return target >= 0 ? std::exp(-target) : std::numeric_limits<Real>::quiet_NaN();
+      case Model::rigid: return std::exp(-target);
+      case Model::rigid_fluid: return target >= 0 ? std::exp(-target) : std::numeric_limits<Real>::quiet_NaN();
       case Model::hooke: {
         const Real a = std::sqrt(1 - b_ * b_);
         const Real s = a / b_ * std::sinh(std::asinh(b_ / a) - target);
         return s > 0 ? s : std::numeric_limits<Real>::quiet_NaN();
       }
-      case Model::constant_sound_speed:
-        return std::exp(-target / b_);
+      case Model::constant_sound_speed: return std::exp(-target / b_);
     }
     return std::numeric_limits<Real>::quiet_NaN();
   }

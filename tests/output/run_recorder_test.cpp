@@ -1,5 +1,7 @@
 // RunRecorder: the event tally, stop requests, interrupts and progress reports a
 // solver's main loop relies on; the streaming recorder's files before and after commit.
+#include "rigidity/run_recorder.hpp"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -13,7 +15,6 @@
 #include "mini_json.hpp"
 #include "rigidity/errors.hpp"
 #include "rigidity/output.hpp"
-#include "rigidity/run_recorder.hpp"
 
 namespace rigidity {
 namespace {

@@ -147,7 +147,7 @@ TEST_F(WriteRun, SummaryHasTheLayoutOfTheSpec) {
 
   const mini_json::Value& bar = doc["bodies"][0];
   EXPECT_EQ(bar.keys(), (std::vector<std::string>{"name", "x_left", "x_right", "velocity_mean", "momentum", "energy",
-                                                 "kinetic_energy", "internal_energy", "rest_energy"}));
+                                                  "kinetic_energy", "internal_energy", "rest_energy"}));
   EXPECT_EQ(bar["velocity_mean"].number, -0.6);
   EXPECT_EQ(bar["energy"].number, 1.25);
 
@@ -332,8 +332,8 @@ TEST_F(WriteRun, AnExistingRunIsReplacedAndOnlyItsOwnFilesGo) {
   Scene scene = wall_impact_scene();
   scene.outputs = OutputsDecl{};  // the new run has no probes: the old probes.csv must go too
   write_run(scene, wall_impact_result(), dir.string());
-  EXPECT_EQ(entries(dir), (std::vector<std::string>{"events.csv", "nested", "notes.md", "resolved_scene.yaml",
-                                                    "summary.json"}));
+  EXPECT_EQ(entries(dir),
+            (std::vector<std::string>{"events.csv", "nested", "notes.md", "resolved_scene.yaml", "summary.json"}));
   EXPECT_EQ(read_file(dir / "notes.md"), "the user's\n");
   EXPECT_EQ(read_file(dir / "nested" / "mine.txt"), "the user's\n");
   EXPECT_EQ(entries(base_), std::vector<std::string>{"run"});

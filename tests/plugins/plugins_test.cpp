@@ -156,8 +156,9 @@ TEST(Plugins, AMaterialIsCheckedWithTheParametersTheSceneGives) {
   // at scale 4, and it cannot be checked when its plugin loads (the factor is required).
   // A scene that makes it acausal is refused at the material, before anything runs.
   const auto scene_with = [](const std::string& scale) {
-    return "name: x\nplugins: [" + plugin("required").string() + "]\nmaterials:\n  m: {model: test_plugin_required, scale: " +
-           scale + "}\nbodies: [{name: b, material: m, position: 0, length: 1}]\ntime: {end: 1}\n";
+    return "name: x\nplugins: [" + plugin("required").string() +
+           "]\nmaterials:\n  m: {model: test_plugin_required, scale: " + scale +
+           "}\nbodies: [{name: b, material: m, position: 0, length: 1}]\ntime: {end: 1}\n";
   };
   try {
     (void)load_scene_string(scene_with("16"), "<test>");

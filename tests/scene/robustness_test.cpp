@@ -107,18 +107,10 @@ TEST(Garbage, MutatedScenesNeverEscapeAsOtherErrors) {
     for (int k = 0; k < edits && !text.empty(); ++k) {
       const std::size_t at = where(random) % text.size();
       switch (operation(random)) {
-        case 0:
-          text[at] = alphabet[pick(random)];
-          break;
-        case 1:
-          text.insert(at, 1, alphabet[pick(random)]);
-          break;
-        case 2:
-          text.erase(at, 1);
-          break;
-        default:
-          text.resize(at);
-          break;
+        case 0: text[at] = alphabet[pick(random)]; break;
+        case 1: text.insert(at, 1, alphabet[pick(random)]); break;
+        case 2: text.erase(at, 1); break;
+        default: text.resize(at); break;
       }
     }
     try {

@@ -5,10 +5,10 @@
 #include <filesystem>
 #include <string>
 
+#include "error_bound.hpp"
 #include "exact/riemann.hpp"
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/solve.hpp"
-#include "error_bound.hpp"
 
 namespace rigidity {
 namespace {
@@ -95,8 +95,7 @@ outputs:
   const RunResult r = solve(scene);
   const auto solid = exact::rigid(1.0);
   const auto soft = exact::hooke(2.0, 0.5);
-  const exact::Solution<double> exact =
-      exact::riemann_problem<double>(solid, {std::atanh(0.5), 1.0}, soft, {0.0, 1.0});
+  const exact::Solution<double> exact = exact::riemann_problem<double>(solid, {std::atanh(0.5), 1.0}, soft, {0.0, 1.0});
   int checked = 0;
   for (const ProbeSample& s : r.probes) {
     if (s.t <= 0.0 || s.t > 0.5) continue;  // before any reflection returns
@@ -114,7 +113,6 @@ outputs:
 
 /// Books of a scene whose every material is linearly degenerate: round-off.
 constexpr double kRoundOff = 1e-12;
-
 
 TEST(Configs, EverySceneRunsAndKeepsItsBooks) {
   int scenes = 0;

@@ -75,7 +75,8 @@ std::string flyer_plate(const std::string& model) {
   return R"(
 name: flyer_plate
 materials:
-  m: {model: )" + model + R"(}
+  m: {model: )" +
+         model + R"(}
 bodies:
   - {name: flyer, material: m, position: 0.0, length: 0.5, velocity: 0.3}
   - {name: target, material: m, position: 0.5, length: 1.0, velocity: -0.3}

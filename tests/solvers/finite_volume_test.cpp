@@ -354,8 +354,7 @@ time: {end: 3.0}
   const double u = 0.3;
   const exact::Solution<double> push =
       exact::wall_problem<double>(rigid, {0.0, 1.0}, exact::Side::right, std::atanh(u), 0.0);
-  const exact::Solution<double> release =
-      exact::free_end_problem<double>(rigid, push.right.star, exact::Side::left);
+  const exact::Solution<double> release = exact::free_end_problem<double>(rigid, push.right.star, exact::Side::left);
   const double t_separation = 1.0 / push.right.front_speed() - 1.0 / release.left.front_speed();
   const double impulse = push.pressure * t_separation;  // the piston pushes at p* until it lets go
   const SceneRun fv = run_yaml(yaml + "solver: " + fv_solver(200, 2, "exact") + "\n");

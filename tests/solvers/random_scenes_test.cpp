@@ -7,16 +7,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <sstream>
 #include <string>
-#include <cstdio>
-#include <cstdlib>
 
+#include "error_bound.hpp"
 #include "rigidity/errors.hpp"
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/solve.hpp"
-#include "error_bound.hpp"
 
 namespace rigidity {
 namespace {
@@ -57,8 +57,7 @@ class SceneGenerator {
       }
       x += lab_length + (coin() ? 0.0 : uniform(0.0, 0.5));
     }
-    y << "boundaries:\n  left: " << boundary(0.0 - (coin() ? 0.0 : 0.3)) << "\n  right: " << boundary(x + 0.2)
-      << "\n";
+    y << "boundaries:\n  left: " << boundary(0.0 - (coin() ? 0.0 : 0.3)) << "\n  right: " << boundary(x + 0.2) << "\n";
     y << "solver: {tolerance: " << kTolerance
       << ", max_fronts: 20000, max_interactions: 20000}\ntime: {end: " << uniform(1.0, 4.0) << "}\n";
     y << "outputs:\n  snapshots: [{times: [0.5, 1.0], quantities: [s, p, v, x], samples: 21}]\n  fronts: true\n";
@@ -95,7 +94,6 @@ class SceneGenerator {
 /// Books of a run that certifies no error: round-off over thousands of interactions
 /// (measured: 2e-15).
 constexpr double kRoundOff = 1e-12;
-
 
 TEST(RandomScenes, KeepEveryPhysicalProperty) {
   SceneGenerator generator(20261121u);
@@ -136,8 +134,8 @@ TEST(RandomScenes, KeepEveryPhysicalProperty) {
       ++solved;
     }
     const Conservation& c = r.conservation;
-    for (double value : {c.energy_initial, c.energy_final, c.energy_dissipated, c.momentum_initial,
-                         c.momentum_final, c.wall_impulse, c.wall_work})
+    for (double value : {c.energy_initial, c.energy_final, c.energy_dissipated, c.momentum_initial, c.momentum_final,
+                         c.wall_impulse, c.wall_work})
       ASSERT_TRUE(std::isfinite(value));
     const double scale = c.energy_initial + std::abs(c.wall_work);
     // Energy is never created: only walls' work adds it, shocks remove it; momentum changes

@@ -66,9 +66,9 @@ TEST(Riemann, LinearlyDegenerateJumpsSatisfyTheJumpConditionsAndConserveEnergy) 
     EXPECT_NEAR(speed_right, characteristic_speed(*m, right, +1), 1e-13 * std::abs(speed_right)) << m->model();
     expect_jump_conditions(*m, sol.right, right, speed_right, 1e-12);
     // No dissipation: the energy law holds across the jump too.
-    const double energy_residual =
-        speed_left * (energy(*m, sol.left) - energy(*m, left)) -
-        (m->pressure(sol.left.stretch) * std::tanh(sol.left.rapidity) - m->pressure(left.stretch) * std::tanh(left.rapidity));
+    const double energy_residual = speed_left * (energy(*m, sol.left) - energy(*m, left)) -
+                                   (m->pressure(sol.left.stretch) * std::tanh(sol.left.rapidity) -
+                                    m->pressure(left.stretch) * std::tanh(left.rapidity));
     EXPECT_LE(std::abs(energy_residual), 1e-12 * std::abs(energy(*m, left))) << m->model();
   }
 }

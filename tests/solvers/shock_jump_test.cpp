@@ -144,8 +144,7 @@ outputs:
   const exact::Solution<double> second = exact::riemann_problem<double>(gas, middle, gas, right);
   ASSERT_EQ(first.right.kind, exact::WaveKind::shock);
   ASSERT_EQ(second.left.kind, exact::WaveKind::shock);
-  const exact::Solution<double> crossed =
-      exact::riemann_problem<double>(gas, first.right.star, gas, second.left.star);
+  const exact::Solution<double> crossed = exact::riemann_problem<double>(gas, first.right.star, gas, second.left.star);
   // The shocks reach the centre at 0.5/|m|; sample well after that, before anything else comes.
   const double meet = 0.5 / std::abs(first.right.front_speed());
   int after = 0;

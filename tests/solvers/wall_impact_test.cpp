@@ -69,9 +69,9 @@ class RigidWallImpact : public ::testing::TestWithParam<double> {};
 
 TEST_P(RigidWallImpact, MatchesThePaper) {
   const double v = GetParam();
-  const double s = std::sqrt((1.0 - v) / (1.0 + v));    // paper eq. (15)
-  const double p = 0.5 * (1.0 / (s * s) - 1.0);          // paper eq. (19)
-  const double contact = 2.0 * s;                        // 2 t1, t1 = l0 s / c
+  const double s = std::sqrt((1.0 - v) / (1.0 + v));  // paper eq. (15)
+  const double p = 0.5 * (1.0 / (s * s) - 1.0);       // paper eq. (19)
+  const double contact = 2.0 * s;                     // 2 t1, t1 = l0 s / c
   const SceneRun run = run_yaml(wall_impact_scene("{model: rigid}", v, 1.5 * contact));
   const RunResult& r = run.result;
 
@@ -94,7 +94,8 @@ TEST_P(RigidWallImpact, MatchesThePaper) {
 
 INSTANTIATE_TEST_SUITE_P(Speeds, RigidWallImpact, ::testing::Values(0.1, 0.6, 0.99),
                          [](const ::testing::TestParamInfo<double>& param) {
-                           return "v_" + std::to_string(static_cast<int>(std::lround(param.param * 100))) + "_percent_c";
+                           return "v_" + std::to_string(static_cast<int>(std::lround(param.param * 100))) +
+                                  "_percent_c";
                          });
 
 TEST(EnergyParts, KineticEnergyBecomesElasticAndComesBack) {
@@ -135,7 +136,7 @@ TEST(ExtremeImpact, AStateDoublePrecisionCannotCarryIsInadmissibleNotNoise) {
   // A gas with c_s = 0.01 c hit at γ = 1e150 would be compressed to s = exp(−700) at
   // p = 1e300: beyond double precision, reported as such (exit 3), not run on as noise.
   const Scene scene = load_scene_string(
-      wall_impact_scene("{model: constant_sound_speed, sound_speed: 0.01}", 0.5, 1.0) , "<test>",
+      wall_impact_scene("{model: constant_sound_speed, sound_speed: 0.01}", 0.5, 1.0), "<test>",
       {"bodies.0={name: bar, material: m, position: 0, length: 1, gamma: 1.0e150}", "solver.tolerance=1e-3"});
   try {
     (void)solve(scene);

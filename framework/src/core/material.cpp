@@ -27,11 +27,13 @@ std::string Material::admissibility_violation(Stretch s) const {
   }
   const double cs = sound_speed(s);
   if (!(cs > 0.0)) {
-    os << "material '" << model() << "' is not hyperbolic at stretch " << shortest(s.value()) << " (sound speed " << shortest(cs) << ")";
+    os << "material '" << model() << "' is not hyperbolic at stretch " << shortest(s.value()) << " (sound speed "
+       << shortest(cs) << ")";
     return os.str();
   }
   if (!(cs <= 1.0)) {
-    os << "material '" << model() << "' is acausal at stretch " << shortest(s.value()) << " (sound speed " << shortest(cs) << " > c)";
+    os << "material '" << model() << "' is acausal at stretch " << shortest(s.value()) << " (sound speed "
+       << shortest(cs) << " > c)";
     return os.str();
   }
   return "";

@@ -22,14 +22,40 @@ ParameterSpec ParameterSpec::text(std::string name, std::string doc) {
   return p;
 }
 
-ParameterSpec& ParameterSpec::with_dimension(Dimension d) { dimension = d; return *this; }
-ParameterSpec& ParameterSpec::require() { required = true; return *this; }
-ParameterSpec& ParameterSpec::defaults_to(double v) { default_number = v; required = false; return *this; }
-ParameterSpec& ParameterSpec::defaults_to(std::string v) { default_text = std::move(v); required = false; return *this; }
-ParameterSpec& ParameterSpec::above(double v) { lower = Bound{v, false}; return *this; }
-ParameterSpec& ParameterSpec::at_least(double v) { lower = Bound{v, true}; return *this; }
-ParameterSpec& ParameterSpec::below(double v) { upper = Bound{v, false}; return *this; }
-ParameterSpec& ParameterSpec::at_most(double v) { upper = Bound{v, true}; return *this; }
+ParameterSpec& ParameterSpec::with_dimension(Dimension d) {
+  dimension = d;
+  return *this;
+}
+ParameterSpec& ParameterSpec::require() {
+  required = true;
+  return *this;
+}
+ParameterSpec& ParameterSpec::defaults_to(double v) {
+  default_number = v;
+  required = false;
+  return *this;
+}
+ParameterSpec& ParameterSpec::defaults_to(std::string v) {
+  default_text = std::move(v);
+  required = false;
+  return *this;
+}
+ParameterSpec& ParameterSpec::above(double v) {
+  lower = Bound{v, false};
+  return *this;
+}
+ParameterSpec& ParameterSpec::at_least(double v) {
+  lower = Bound{v, true};
+  return *this;
+}
+ParameterSpec& ParameterSpec::below(double v) {
+  upper = Bound{v, false};
+  return *this;
+}
+ParameterSpec& ParameterSpec::at_most(double v) {
+  upper = Bound{v, true};
+  return *this;
+}
 
 namespace {
 std::string number_text(double v) {

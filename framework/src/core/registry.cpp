@@ -141,7 +141,6 @@ std::string admissibility_problem(const Material& material) {
   return "";
 }
 
-
 std::shared_ptr<const Material> build_material(const MaterialInfo& info, const ParameterValues& given) {
   ParameterValues values;
   values.set_directory(given.directory());
@@ -167,7 +166,8 @@ std::shared_ptr<const Material> build_material(const MaterialInfo& info, const P
     values.set(entry.first, entry.second);
   }
   for (const ParameterSpec& spec : info.parameters)
-    if (spec.required && !values.has(spec.name)) throw std::invalid_argument("'" + info.name + "' needs '" + spec.name + "'");
+    if (spec.required && !values.has(spec.name))
+      throw std::invalid_argument("'" + info.name + "' needs '" + spec.name + "'");
   std::shared_ptr<const Material> material = info.make(values);
   if (const std::string problem = admissibility_problem(*material); !problem.empty())
     throw std::invalid_argument(problem);

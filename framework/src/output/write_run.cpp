@@ -144,8 +144,8 @@ fs::path output_path(const std::string& dir) {
 
 bool is_run_file(std::string_view name) {
   static constexpr std::string_view kRunFiles[] = {
-      "summary.json", "events.csv",  "probes.csv", "snapshots.csv", "fronts.csv",   "resolved_scene.yaml",
-      "xt.png",       "probes.png",  "snapshots.png", "xt.gp",      "probes.gp",    "snapshots.gp"};
+      "summary.json", "events.csv", "probes.csv",    "snapshots.csv", "fronts.csv", "resolved_scene.yaml",
+      "xt.png",       "probes.png", "snapshots.png", "xt.gp",         "probes.gp",  "snapshots.gp"};
   for (std::string_view file : kRunFiles)
     if (name == file) return true;
   return false;

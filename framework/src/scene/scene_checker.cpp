@@ -156,19 +156,14 @@ Checked Checker::check(const YAML::Node& node, const Key& key, const Path& path,
 
   switch (key.kind) {
     case Kind::list:
-    case Kind::tuple:
-      return check_list(node, key, std::move(out));
-    case Kind::map:
-      return check_map(node, key, std::move(out));
-    case Kind::dictionary:
-      return check_dictionary(node, key, std::move(out));
+    case Kind::tuple: return check_list(node, key, std::move(out));
+    case Kind::map: return check_map(node, key, std::move(out));
+    case Kind::dictionary: return check_dictionary(node, key, std::move(out));
     case Kind::number:
-    case Kind::integer:
-      return check_number(node, key, std::move(out));
+    case Kind::integer: return check_number(node, key, std::move(out));
     case Kind::text:
     case Kind::choice:
-    case Kind::boolean:
-      return check_scalar(node, key, std::move(out));
+    case Kind::boolean: return check_scalar(node, key, std::move(out));
   }
   return out;
 }
@@ -434,14 +429,10 @@ namespace {
 
 std::string scalar_text(const Checked& c) {
   switch (c.kind) {
-    case Kind::number:
-      return c.is_word() ? c.word : format_number(c.as_written);
-    case Kind::integer:
-      return std::to_string(static_cast<long long>(c.as_written));  // |n| <= 1e12 by the schema
-    case Kind::boolean:
-      return c.flag ? "true" : "false";
-    default:
-      return c.word;
+    case Kind::number: return c.is_word() ? c.word : format_number(c.as_written);
+    case Kind::integer: return std::to_string(static_cast<long long>(c.as_written));  // |n| <= 1e12 by the schema
+    case Kind::boolean: return c.flag ? "true" : "false";
+    default: return c.word;
   }
 }
 

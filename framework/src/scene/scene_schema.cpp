@@ -334,8 +334,7 @@ namespace {
 
 std::string kind_text(const Key& k) {
   switch (k.kind) {
-    case Kind::text:
-      return "string";
+    case Kind::text: return "string";
     case Kind::choice: {
       std::string out;
       for (const std::string& w : k.words) out += (out.empty() ? "" : "|") + w;
@@ -346,24 +345,19 @@ std::string kind_text(const Key& k) {
       for (const std::string& w : k.words) out += "|" + w;
       return out;
     }
-    case Kind::integer:
-      return "integer";
-    case Kind::boolean:
-      return "true|false";
-    case Kind::list:
-      return "list";
-    case Kind::tuple:
-      return "[" + std::to_string(k.fields.size()) + " values]";
-    case Kind::map:
-      return "map";
-    case Kind::dictionary:
-      return "map of names";
+    case Kind::integer: return "integer";
+    case Kind::boolean: return "true|false";
+    case Kind::list: return "list";
+    case Kind::tuple: return "[" + std::to_string(k.fields.size()) + " values]";
+    case Kind::map: return "map";
+    case Kind::dictionary: return "map of names";
   }
   return "?";
 }
 
 std::string default_text(const Key& k, UnitSystem units) {
-  if (const auto* d = std::get_if<double>(&k.fallback)) return detail::format_number(from_natural(*d, k.dimension, units));
+  if (const auto* d = std::get_if<double>(&k.fallback))
+    return detail::format_number(from_natural(*d, k.dimension, units));
   if (const auto* b = std::get_if<bool>(&k.fallback)) return *b ? "true" : "false";
   if (const auto* w = std::get_if<std::string>(&k.fallback)) return *w;
   return k.derived_default;
@@ -415,8 +409,8 @@ void describe_into(std::ostringstream& out, const Key& k, UnitSystem units, int 
     for (const std::string& m : MaterialRegistry::instance().names()) {
       const std::vector<Key> more = k.extension->fields(m);
       if (more.empty()) continue;
-      out << std::string(static_cast<std::size_t>(2 * (depth + 1)), ' ') << "# with " << k.extension->selector
-          << ": " << m << "\n";
+      out << std::string(static_cast<std::size_t>(2 * (depth + 1)), ' ') << "# with " << k.extension->selector << ": "
+          << m << "\n";
       for (const Key& f : more) describe_into(out, f, units, depth + 1);
     }
   }

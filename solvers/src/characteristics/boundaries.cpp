@@ -1,6 +1,4 @@
 // Walls, pistons, gaps between bodies, contacts and cracks: the rare events and the ends of pieces.
-#include "tracker.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -9,6 +7,7 @@
 #include <vector>
 
 #include "rigidity/errors.hpp"
+#include "tracker.hpp"
 
 namespace rigidity::characteristics {
 
@@ -16,9 +15,8 @@ bool Tracker::valid(const Event& e) const {
   switch (e.type) {
     case EventType::resolve: return nodes_[e.a].alive && nodes_[e.a].version == e.va;
     case EventType::gap:
-      return nodes_[e.a].alive && nodes_[e.b].alive && nodes_[e.a].version == e.va &&
-             nodes_[e.b].version == e.vb && nodes_[e.a].attach == Attach::free &&
-             nodes_[e.b].attach == Attach::free;
+      return nodes_[e.a].alive && nodes_[e.b].alive && nodes_[e.a].version == e.va && nodes_[e.b].version == e.vb &&
+             nodes_[e.a].attach == Attach::free && nodes_[e.b].attach == Attach::free;
     case EventType::wall_gap:
       return nodes_[e.a].alive && nodes_[e.a].version == e.va && walls_[e.b].version == e.vb &&
              nodes_[e.a].attach == Attach::free;

@@ -1,6 +1,4 @@
 // What keeps the number of fronts bounded, and what it costs: merging fronts of one family, and the error of fan steps.
-#include "tracker.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -9,6 +7,7 @@
 #include <vector>
 
 #include "rigidity/errors.hpp"
+#include "tracker.hpp"
 
 namespace rigidity::characteristics {
 
@@ -162,7 +161,8 @@ bool Tracker::merge_across(int p, int q, double t) {
     segments_.push_back(MergeSegment{a, b, old, j_old, left.value, right.value, right_node});
     return true;
   };
-  const bool extend_left = nodes_[left_of_p].kind == NodeKind::front && nodes_[nodes_[left_of_p].prev].right.material == &m;
+  const bool extend_left =
+      nodes_[left_of_p].kind == NodeKind::front && nodes_[nodes_[left_of_p].prev].right.material == &m;
   const bool extend_right = nodes_[right_of_q].kind == NodeKind::front && nodes_[right_of_q].right.material == &m;
   if (extend_left && !add(nodes_[left_of_p].X_at(t), Xp, before, j_before, kNone)) return false;
   double a = Xp;
@@ -294,8 +294,9 @@ double Tracker::fan_error(int id, double t) const {
   const Region& right = n.right;
   const Material& m = *right.material;
   const double strength = std::abs(wave_strength(m, left.state, right.state, n.family));
-  const double spread = std::abs(characteristic_speed(m, left.state, n.family) -
-                                 characteristic_speed(m, right.state, n.family)) * (t - n.born);
+  const double spread =
+      std::abs(characteristic_speed(m, left.state, n.family) - characteristic_speed(m, right.state, n.family)) *
+      (t - n.born);
   // No wider than the room between its neighbours: a staircase of steps misses the ramp it
   // stands for by σ/4 of the spacing.
   const double room = 0.5 * (nodes_[n.next].X_at(t) - nodes_[n.prev].X_at(t));

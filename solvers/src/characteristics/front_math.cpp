@@ -19,9 +19,8 @@ double wave_strength(const Material& m, const State& a, const State& b, int fami
 FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b, int family) {
   const double ca = std::cosh(a.rapidity);
   const double half = 0.5 * (b.rapidity - a.rapidity);
-  const double denominator =
-      a.stretch.value() * (std::expm1(b.stretch.log() - a.stretch.log()) * ca -
-                           2.0 * std::sinh(0.5 * (a.rapidity + b.rapidity)) * std::sinh(half));
+  const double denominator = a.stretch.value() * (std::expm1(b.stretch.log() - a.stretch.log()) * ca -
+                                                  2.0 * std::sinh(0.5 * (a.rapidity + b.rapidity)) * std::sinh(half));
   const double speed = -std::sinh(b.rapidity - a.rapidity) / denominator;
   const double lab = std::tanh(a.rapidity) + speed * a.stretch.value() / ca;
   // A coarse step (or a jump held off its curve) can give a speed against its family's
@@ -128,7 +127,9 @@ bool same_state(const State& a, const State& b) {
          std::abs(a.stretch.log() - b.stretch.log()) <= 4.0 * kEps * (1.0 + std::abs(a.stretch.log()));
 }
 
-bool touching(double x1, double x2) { return std::abs(x1 - x2) <= 64.0 * kEps * std::max({1.0, std::abs(x1), std::abs(x2)}); }
+bool touching(double x1, double x2) {
+  return std::abs(x1 - x2) <= 64.0 * kEps * std::max({1.0, std::abs(x1), std::abs(x2)});
+}
 
 std::string number(double v) {
   std::ostringstream os;

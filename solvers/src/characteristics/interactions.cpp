@@ -1,6 +1,5 @@
-// Fronts meeting: the next meeting of a node, interactions done in place, full Riemann problems at a point, the waves they emit, and weak waves held back at interfaces and contacts.
-#include "tracker.hpp"
-
+// Fronts meeting: the next meeting of a node, interactions done in place, full Riemann problems at a point, the waves
+// they emit, and weak waves held back at interfaces and contacts.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -9,6 +8,7 @@
 #include <vector>
 
 #include "rigidity/errors.hpp"
+#include "tracker.hpp"
 
 namespace rigidity::characteristics {
 
@@ -112,8 +112,8 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   for (Node* n : {&na, &nb}) {
     if (n->front_kind != FrontKind::rarefaction) continue;
     const int k = n->family > 0 ? 1 : 0;
-    const bool continues = kinds[k] == FrontKind::rarefaction && !(held_back && k == 0) &&
-                           (na.family != nb.family || degenerate);
+    const bool continues =
+        kinds[k] == FrontKind::rarefaction && !(held_back && k == 0) && (na.family != nb.family || degenerate);
     if (continues && born[k] == t) {
       born[k] = n->born;
     } else {
@@ -147,10 +147,10 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   result_.stats.fronts += 2;
   // The strengths: J− across the C− front, J+ across the C+ front (for a linearly
   // degenerate material, those the fronts brought in, passed on).
-  const double strength_minus = degenerate ? std::abs(j_minus - (left.rapidity - psi_left))
-                                           : std::abs(wave_strength(*m, left, star, -1));
-  const double strength_plus = degenerate ? std::abs(right.rapidity + psi_right - j_plus)
-                                          : std::abs(wave_strength(*m, star, right, +1));
+  const double strength_minus =
+      degenerate ? std::abs(j_minus - (left.rapidity - psi_left)) : std::abs(wave_strength(*m, left, star, -1));
+  const double strength_plus =
+      degenerate ? std::abs(right.rapidity + psi_right - j_plus) : std::abs(wave_strength(*m, star, right, +1));
   set_front(a, -1, kinds[0], *m, left, star, t, X, x, off_hugoniot[0], born[0], strength_minus);
   set_front(b, +1, kinds[1], *m, star, right, t, X, x, off_hugoniot[1], born[1], strength_plus);
   na.right.state = star;
@@ -175,8 +175,8 @@ void Tracker::set_front(int id, int family, FrontKind kind, const Material& m, c
                         double t, double X, double x, double off_hugoniot, double born, double strength) {
   Node& n = nodes_[id];
   n.strength = strength;
-  const FrontSpeeds speeds = kind == FrontKind::contact ? memo_->speeds(m, right, family)
-                                                        : label_jump_speeds(m, left, right, family);
+  const FrontSpeeds speeds =
+      kind == FrontKind::contact ? memo_->speeds(m, right, family) : label_jump_speeds(m, left, right, family);
   n.born = born;
   n.family = family;
   n.front_kind = kind;
@@ -267,8 +267,8 @@ void Tracker::wave(const Material& m, const State& outer, const State& star, int
   return;
 }
 
-void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, int piece, double t, double X,
-                          double x, std::vector<int>& out) {
+void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, int piece, double t, double X, double x,
+                          std::vector<int>& out) {
   out.clear();
   const std::size_t jumps = w.states.size() - 1;
   for (std::size_t k = 0; k < jumps; ++k) {
@@ -284,8 +284,8 @@ void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, in
     n.strength = std::abs(wave_strength(m, outer, inner, family));
     if (w.shock) {
       n.front_kind = FrontKind::shock;
-      const FrontSpeeds sp = family < 0 ? label_jump_speeds(m, outer, inner, family)
-                                        : label_jump_speeds(m, inner, outer, family);
+      const FrontSpeeds sp =
+          family < 0 ? label_jump_speeds(m, outer, inner, family) : label_jump_speeds(m, inner, outer, family);
       n.dXdt = sp.lagrangian;
       n.dxdt = sp.lab;
     } else {
@@ -299,8 +299,8 @@ void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, in
         // A fan step moves at the speed the label jump condition gives it, within second
         // order of the mean of the characteristic speeds on its two sides.
         n.front_kind = FrontKind::rarefaction;
-        const FrontSpeeds sp = family < 0 ? label_jump_speeds(m, outer, inner, family)
-                                          : label_jump_speeds(m, inner, outer, family);
+        const FrontSpeeds sp =
+            family < 0 ? label_jump_speeds(m, outer, inner, family) : label_jump_speeds(m, inner, outer, family);
         n.dXdt = sp.lagrangian;
         n.dxdt = sp.lab;
       }
@@ -379,8 +379,8 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   };
 
   // The outer states and the problem they pose.
-  const int before = left_boundary ? kNone : nf.prev;   // node whose right region is the left state
-  const int after = right_boundary ? kNone : last;      // node whose right region is the right state
+  const int before = left_boundary ? kNone : nf.prev;  // node whose right region is the left state
+  const int after = right_boundary ? kNone : last;     // node whose right region is the right state
   const Region left_region = before != kNone ? nodes_[before].right : Region{};
   const Region right_region = after != kNone ? nodes_[after].right : Region{};
   const int left_piece = nf.piece, right_piece = nl.piece;
@@ -606,11 +606,11 @@ void Tracker::hold_back_weak_wave(RiemannSolution& sol, const Region& left, cons
   const double weaker = std::min(weak_left, weak_right);
   if (!(weaker < weak_) || weaker == 0.0) return;
   const bool drop_left = weak_left <= weak_right;
-  const Region& kept = drop_left ? left : right;    // the side whose wave is held back keeps its state
+  const Region& kept = drop_left ? left : right;  // the side whose wave is held back keeps its state
   const Region& moved = drop_left ? right : left;
   if (kept.material->pressure(kept.state.stretch) < min_pressure) return;  // it would part: solve in full
-  const RiemannSolution other = solve_wall(*moved.material, moved.state, drop_left ? Side::right : Side::left,
-                                           kept.state.rapidity, -kInf);
+  const RiemannSolution other =
+      solve_wall(*moved.material, moved.state, drop_left ? Side::right : Side::left, kept.state.rapidity, -kInf);
   if (other.status != Status::ok || other.pressure < min_pressure) return;
   (drop_left ? sol.left : sol.right) = kept.state;
   (drop_left ? sol.right : sol.left) = other.left;

@@ -61,7 +61,8 @@ class MeetingQueue {
   /// Without branches: which of four children is earliest is a coin toss the branch
   /// predictor cannot learn.
   static bool earlier(const Entry& a, const Entry& b) {
-    return static_cast<bool>(static_cast<int>(a.t < b.t) | (static_cast<int>(a.t == b.t) & static_cast<int>(a.seq < b.seq)));
+    return static_cast<bool>(static_cast<int>(a.t < b.t) |
+                             (static_cast<int>(a.t == b.t) & static_cast<int>(a.seq < b.seq)));
   }
   void grow(int node) {
     if (node < static_cast<int>(position_.size())) return;

@@ -1,6 +1,4 @@
 // What the outputs read from the tracker: front segments, probe and snapshot samples, the energy books.
-#include "tracker.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -9,6 +7,7 @@
 #include <vector>
 
 #include "rigidity/errors.hpp"
+#include "tracker.hpp"
 
 namespace rigidity::characteristics {
 
@@ -46,9 +45,8 @@ bool Tracker::locate(int body, double X, double t, Region& region, double& x) co
     if (X < le.X_at(t) || X > re.X_at(t)) continue;
     int n = pieces_[piece].left_end;
     // The last node at or left of X (the region to its right holds X).
-    for (int next = nodes_[n].next; next != kNone && nodes_[next].kind != NodeKind::right_end &&
-                                    nodes_[next].X_at(t) <= X;
-         next = nodes_[n].next)
+    for (int next = nodes_[n].next;
+         next != kNone && nodes_[next].kind != NodeKind::right_end && nodes_[next].X_at(t) <= X; next = nodes_[n].next)
       n = next;
     const Node& node = nodes_[n];
     region = node.right;
@@ -71,8 +69,7 @@ void Tracker::sample(const SampleTime& st) {
     Region r;
     double x = 0.0;
     if (!locate(body, probe.X, t, r, x)) return;
-    for (Quantity q : probe.quantities)
-      recorder_.probe(ProbeSample{t, st.index, q, quantity(q, r, probe.X, x)});
+    for (Quantity q : probe.quantities) recorder_.probe(ProbeSample{t, st.index, q, quantity(q, r, probe.X, x)});
     return;
   }
   const SnapshotDecl& snap = scene_.outputs.snapshots[st.index];

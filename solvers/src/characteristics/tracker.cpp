@@ -1,10 +1,8 @@
 // Set-up of bodies and walls, and the main loop of the front tracker.
-#include "rigidity/solvers/characteristics.hpp"
-
 #include "tracker.hpp"
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -12,6 +10,7 @@
 #include <vector>
 
 #include "rigidity/errors.hpp"
+#include "rigidity/solvers/characteristics.hpp"
 
 namespace rigidity::characteristics {
 
@@ -78,7 +77,6 @@ void Tracker::build_walls() {
   }
 }
 
-
 RunResult Tracker::run() {
   const auto start = std::chrono::steady_clock::now();
   build_bodies();
@@ -106,8 +104,8 @@ RunResult Tracker::run() {
   const double tolerance = scene_.solver.tolerance;
   merge_base_ = merge_ = kMergeFraction * tolerance * tolerance * total_length_;
   weak_merging_ = 0.5 * tolerance * tolerance;
-  front_cap_ = static_cast<double>(scene_.bodies.size()) *
-               std::max(kMinFrontsPerBody, kFrontsPerBody / scene_.solver.tolerance);
+  front_cap_ =
+      static_cast<double>(scene_.bodies.size()) * std::max(kMinFrontsPerBody, kFrontsPerBody / scene_.solver.tolerance);
   weak_ = 0.5 * scene_.solver.tolerance / std::max(1, places);
   totals(0.0, result_.conservation.energy_initial, result_.conservation.momentum_initial);
 
@@ -244,8 +242,7 @@ RunResult Tracker::run() {
     result_.warnings.push_back("rarefaction fans were split into at most " + std::to_string(kMaxFanSteps) +
                                " steps: coarser than solver.tolerance = " + number(scene_.solver.tolerance));
   }
-  result_.stats.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result_.stats.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result_;
 }
 

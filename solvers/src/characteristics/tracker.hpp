@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "front_math.hpp"
-#include "memo.hpp"
 #include "meeting_queue.hpp"
+#include "memo.hpp"
 #include "rigidity/run_recorder.hpp"
 #include "rigidity/run_result.hpp"
 #include "rigidity/scene.hpp"
@@ -64,15 +64,15 @@ struct Node {
   int family = 0;
   double t0 = 0.0, X0 = 0.0, x0 = 0.0;  ///< anchor: label and lab position at time t0
   double dXdt = 0.0, dxdt = 0.0;
-  int prev = kNone, next = kNone;       ///< neighbours within the piece
-  Region right;                         ///< the state between this node and `next`
+  int prev = kNone, next = kNone;  ///< neighbours within the piece
+  Region right;                    ///< the state between this node and `next`
   std::uint32_t version = 0;
   bool alive = true;
-  Attach attach = Attach::free;         ///< end nodes only
-  int partner = kNone;                  ///< Attach::body: the touching end node; Attach::boundary: 0 left, 1 right
+  Attach attach = Attach::free;  ///< end nodes only
+  int partner = kNone;           ///< Attach::body: the touching end node; Attach::boundary: 0 left, 1 right
   int piece = kNone;
-  double born = 0.0;                    ///< fronts: when the wave it carries was created (fan error grows from then)
-  double strength = 0.0;                ///< fronts: |jump of the family's own invariant| (J+ for C+, J− for C−)
+  double born = 0.0;      ///< fronts: when the wave it carries was created (fan error grows from then)
+  double strength = 0.0;  ///< fronts: |jump of the family's own invariant| (J+ for C+, J− for C−)
   /// Interfaces and contacts: a wave weaker than the threshold that this node did not emit
   /// (its strength times its speed, the L1 error it adds per unit time), since when, and
   /// the most it can add (strength times the natural length it could sweep).
@@ -94,11 +94,11 @@ struct Wall {
   bool present = false;
   bool bonded = false;
   double t0 = 0.0, x0 = 0.0, rapidity = 0.0;
-  std::size_t segment = 0;               ///< index into motion of the velocity in force
-  PistonMotion motion;                   ///< empty for a fixed wall
-  int attached = kNone;                  ///< the end node touching it
+  std::size_t segment = 0;  ///< index into motion of the velocity in force
+  PistonMotion motion;      ///< empty for a fixed wall
+  int attached = kNone;     ///< the end node touching it
   std::uint32_t version = 0;
-  double pressure_since = 0.0;           ///< for the impulse: time the current contact pressure started
+  double pressure_since = 0.0;  ///< for the impulse: time the current contact pressure started
   [[nodiscard]] double velocity() const { return std::tanh(rapidity); }
   [[nodiscard]] double x_at(double t) const { return x0 + velocity() * (t - t0); }
   [[nodiscard]] double next_change() const {
@@ -113,7 +113,7 @@ struct Event {
   double t;
   std::uint64_t seq;
   EventType type;
-  int a, b;               ///< nodes (b: wall side 0/1 for wall_gap; a: wall side for piston)
+  int a, b;  ///< nodes (b: wall side 0/1 for wall_gap; a: wall side for piston)
   std::uint32_t va, vb;
 };
 
@@ -209,16 +209,16 @@ class Tracker {
   bool merge_across(int p, int q, double t);
   void merge_nearby(int id, double t);
   struct MergeSegment {
-    double a, b;             ///< label extent at the time of the merge
-    State old;               ///< its state now
-    double j_old;            ///< its f-invariant now
-    State left, right;       ///< its state if left of the merged front, if right of it
-    int right_node;          ///< the node at its right edge that stays (kNone: p or q)
+    double a, b;        ///< label extent at the time of the merge
+    State old;          ///< its state now
+    double j_old;       ///< its f-invariant now
+    State left, right;  ///< its state if left of the merged front, if right of it
+    int right_node;     ///< the node at its right edge that stays (kNone: p or q)
   };
   std::vector<MergeSegment> segments_;
   double merge_cost(int p, int q, double t, double* X_merged) const;
-  void set_front(int id, int family, FrontKind kind, const Material& m, const State& left, const State& right,
-                 double t, double X, double x, double off_hugoniot, double born, double strength);
+  void set_front(int id, int family, FrontKind kind, const Material& m, const State& left, const State& right, double t,
+                 double X, double x, double off_hugoniot, double born, double strength);
   void resolve_group(std::vector<int>& group, double t);
   void wave(const Material& m, const State& outer, const State& star, int family, WaveStates& w);
   void emit_fronts(const Material& m, const WaveStates& w, int family, int piece, double t, double X, double x,
@@ -249,14 +249,14 @@ class Tracker {
   double fan_step_ = 1e-12;
   bool fan_capped_ = false;
   // ---- the error budget (see README "What the tolerance means") --------------------
-  double weak_ = 0.0;               ///< strength |ΔJ| below which an interface or contact emits no wave
-  double weak_merging_ = 0.0;       ///< strength below which two fronts of one family merging emit no reflection
-  double total_length_ = 1.0;       ///< natural length of all bodies: the error bound is per unit of it
-  double error_defects_ = 0.0;      ///< L1 error of waves held back at interfaces and contacts
-  double error_fans_ = 0.0;         ///< L1 error of fan steps whose fans are gone
-  long suppressed_ = 0;             ///< weak waves held back
-  double merge_base_ = 0.0;         ///< largest L1 error (strength × distance) of a merge while fronts are few
-  double merge_ = 0.0;              ///< the same now: raised while the live fronts exceed front_cap_
+  double weak_ = 0.0;           ///< strength |ΔJ| below which an interface or contact emits no wave
+  double weak_merging_ = 0.0;   ///< strength below which two fronts of one family merging emit no reflection
+  double total_length_ = 1.0;   ///< natural length of all bodies: the error bound is per unit of it
+  double error_defects_ = 0.0;  ///< L1 error of waves held back at interfaces and contacts
+  double error_fans_ = 0.0;     ///< L1 error of fan steps whose fans are gone
+  long suppressed_ = 0;         ///< weak waves held back
+  double merge_base_ = 0.0;     ///< largest L1 error (strength × distance) of a merge while fronts are few
+  double merge_ = 0.0;          ///< the same now: raised while the live fronts exceed front_cap_
   double front_cap_ = 0.0;
   /// A solution that grows rough (a pulse scattered by many contacts into more and more
   /// waves) cannot be held to a fixed L1 error by a bounded number of fronts. Work is bounded
@@ -270,7 +270,7 @@ class Tracker {
       merge_ = std::max(merge_base_, merge_ / 1.01);
     }
   }
-  double error_merges_ = 0.0;       ///< L1 error of fronts merged
+  double error_merges_ = 0.0;  ///< L1 error of fronts merged
   long merged_ = 0;
   long live_fronts_max_ = 0;
 
@@ -295,7 +295,7 @@ class Tracker {
   std::vector<int> order_;  ///< pieces in lab order, left to right
   Wall walls_[2];
   std::vector<Event> queue_;  ///< rare events (a heap, EventLater): gaps, pistons, t = 0
-  MeetingQueue meetings_;                                              ///< fronts meeting fronts, ends, interfaces
+  MeetingQueue meetings_;     ///< fronts meeting fronts, ends, interfaces
   std::uint64_t seq_ = 0;
   long live_fronts_ = 0;
 

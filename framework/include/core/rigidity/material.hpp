@@ -29,9 +29,7 @@ namespace rigidity {
 struct StretchRange {
   double log_min = -std::numeric_limits<double>::infinity();
   double log_max = std::numeric_limits<double>::infinity();
-  [[nodiscard]] constexpr bool contains(Stretch s) const {
-    return s.log() >= log_min && s.log() <= log_max;
-  }
+  [[nodiscard]] constexpr bool contains(Stretch s) const { return s.log() >= log_min && s.log() <= log_max; }
 };
 
 class Material {

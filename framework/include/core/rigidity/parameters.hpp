@@ -27,10 +27,10 @@ struct ParameterSpec {
   ParameterType type = ParameterType::number;
   Dimension dimension = Dimension::dimensionless;
   bool required = false;
-  std::optional<double> default_number;      ///< default of an optional number
-  std::optional<std::string> default_text;   ///< default of an optional text
-  std::optional<Bound> lower;                ///< in natural units
-  std::optional<Bound> upper;                ///< in natural units
+  std::optional<double> default_number;     ///< default of an optional number
+  std::optional<std::string> default_text;  ///< default of an optional text
+  std::optional<Bound> lower;               ///< in natural units
+  std::optional<Bound> upper;               ///< in natural units
 
   /// Builders, read as a declaration:
   ///   ParameterSpec::number("wave_speed", "shock speed V relative to the unstrained bar")
@@ -60,9 +60,7 @@ class ParameterValues {
   /// \throws std::out_of_range if absent (the loader fills every default first)
   [[nodiscard]] double number(const std::string& name) const;
   [[nodiscard]] const std::string& text(const std::string& name) const;
-  [[nodiscard]] bool has(const std::string& name) const {
-    return numbers_.count(name) != 0 || texts_.count(name) != 0;
-  }
+  [[nodiscard]] bool has(const std::string& name) const { return numbers_.count(name) != 0 || texts_.count(name) != 0; }
   [[nodiscard]] const std::map<std::string, double>& numbers() const { return numbers_; }
   [[nodiscard]] const std::map<std::string, std::string>& texts() const { return texts_; }
 

@@ -10,7 +10,7 @@ namespace rigidity {
 
 enum class Quantity { X, x, v, s, p, e, rho, gamma, cs };
 
-inline constexpr Quantity kAllQuantities[] = {Quantity::X, Quantity::x, Quantity::v, Quantity::s, Quantity::p,
+inline constexpr Quantity kAllQuantities[] = {Quantity::X, Quantity::x,   Quantity::v,     Quantity::s, Quantity::p,
                                               Quantity::e, Quantity::rho, Quantity::gamma, Quantity::cs};
 
 [[nodiscard]] constexpr std::string_view to_string(Quantity q) {

@@ -107,8 +107,7 @@ class MaterialRegistry {
 /// range (admissibility_problem). \throws std::invalid_argument saying which rule broke.
 [[nodiscard]] std::shared_ptr<const Material> build_material(const MaterialInfo& info, const ParameterValues& given);
 /// The same for a registered name. \throws std::invalid_argument for an unknown name too.
-[[nodiscard]] std::shared_ptr<const Material> build_material(std::string_view name,
-                                                            const ParameterValues& given = {});
+[[nodiscard]] std::shared_ptr<const Material> build_material(std::string_view name, const ParameterValues& given = {});
 
 /// Empty if `material` is hyperbolic (W'' > 0) and causal (c_s ≤ c), with finite pressure,
 /// energy and Ψ, at s = 1 and at 257 stretches spanning its admissible range (s in [1e-6, 1e6]

@@ -8,9 +8,9 @@ namespace rigidity {
 
 enum class Status {
   ok,
-  out_of_range,    ///< the requested value lies outside what the material can reach
-  no_bracket,      ///< a root could not be bracketed
-  not_converged,   ///< an iteration stopped before meeting its tolerance
+  out_of_range,   ///< the requested value lies outside what the material can reach
+  no_bracket,     ///< a root could not be bracketed
+  not_converged,  ///< an iteration stopped before meeting its tolerance
 };
 
 [[nodiscard]] constexpr std::string_view to_string(Status s) {

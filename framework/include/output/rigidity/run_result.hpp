@@ -15,8 +15,8 @@ namespace rigidity {
 
 struct RunEvent {
   double t = 0.0;
-  std::string kind;                 ///< contact | separation | cavitation | ...
-  double x = 0.0;                   ///< lab position
+  std::string kind;  ///< contact | separation | cavitation | ...
+  double x = 0.0;    ///< lab position
   std::vector<std::string> bodies;
 };
 
@@ -24,38 +24,38 @@ struct RunEvent {
 struct BodyResult {
   std::string name;
   double x_left = 0.0, x_right = 0.0;
-  double velocity_mean = 0.0;       ///< weighted by rest mass
-  double momentum = 0.0;            ///< per unit area
-  double energy = 0.0;              ///< per unit area, rest energy included
+  double velocity_mean = 0.0;  ///< weighted by rest mass
+  double momentum = 0.0;       ///< per unit area
+  double energy = 0.0;         ///< per unit area, rest energy included
   // Its parts, each computed on its own scale (not as differences of the total, whose
   // round-off can exceed them: a steel bar at 10 m/s has 5e-16 of its energy as motion).
-  double kinetic_energy = 0.0;      ///< energy − the same body at rest in the same strain
-  double internal_energy = 0.0;     ///< elastic: W(s) − ρ00 per unit natural length
-  double rest_energy = 0.0;         ///< ρ00 c² per unit natural length
+  double kinetic_energy = 0.0;   ///< energy − the same body at rest in the same strain
+  double internal_energy = 0.0;  ///< elastic: W(s) − ρ00 per unit natural length
+  double rest_energy = 0.0;      ///< ρ00 c² per unit natural length
 };
 
 struct Conservation {
   double energy_initial = 0.0, energy_final = 0.0, energy_dissipated = 0.0;
   double momentum_initial = 0.0, momentum_final = 0.0, wall_impulse = 0.0;
-  double wall_work = 0.0;           ///< energy given by walls and pistons (zero for fixed walls)
+  double wall_work = 0.0;  ///< energy given by walls and pistons (zero for fixed walls)
 };
 
 struct RunStats {
-  long fronts = 0;                  ///< fronts created over the run
-  long interactions = 0;            ///< Riemann problems solved
-  double wall_time_s = 0.0;         ///< solving only
+  long fronts = 0;           ///< fronts created over the run
+  long interactions = 0;     ///< Riemann problems solved
+  double wall_time_s = 0.0;  ///< solving only
 };
 
 struct ProbeSample {
   double t;
-  int probe;                        ///< index into scene.outputs.probes
+  int probe;  ///< index into scene.outputs.probes
   Quantity quantity;
   double value;
 };
 
 struct SnapshotSample {
   double t;
-  int body;                         ///< index into RunResult::body_names
+  int body;  ///< index into RunResult::body_names
   double X;
   Quantity quantity;
   double value;
@@ -77,22 +77,22 @@ enum class FrontKind { shock, contact, rarefaction, interface, boundary };
 struct FrontSegment {
   double t0, x0, t1, x1;
   FrontKind kind;
-  int family;                       ///< -1 left-moving (C-), +1 right-moving (C+), 0 neither
+  int family;  ///< -1 left-moving (C-), +1 right-moving (C+), 0 neither
 };
 
 struct RunResult {
-  std::string status = "ok";        ///< ok | stopped (a budget) | interrupted (Ctrl-C): to_string(RunStatus)
-  double t_reached = 0.0;           ///< where the books were closed: t_end when ok, else the time reached
-  std::string stop_reason;          ///< stopped or interrupted: why, and what to change
-  std::string solver;               ///< "characteristics" | "finite_volume"
-  std::vector<std::pair<std::string, double>> solver_numbers;   ///< e.g. tolerance, cells
+  std::string status = "ok";  ///< ok | stopped (a budget) | interrupted (Ctrl-C): to_string(RunStatus)
+  double t_reached = 0.0;     ///< where the books were closed: t_end when ok, else the time reached
+  std::string stop_reason;    ///< stopped or interrupted: why, and what to change
+  std::string solver;         ///< "characteristics" | "finite_volume"
+  std::vector<std::pair<std::string, double>> solver_numbers;  ///< e.g. tolerance, cells
   std::vector<std::string> warnings;
-  std::vector<RunEvent> events;     ///< every event (in memory), or the first RunRecorder::kFirstEvents (streamed)
-  std::vector<std::pair<std::string, long>> event_counts;   ///< every event by kind, in order of first appearance
-  std::vector<BodyResult> bodies;   ///< at t_reached
+  std::vector<RunEvent> events;  ///< every event (in memory), or the first RunRecorder::kFirstEvents (streamed)
+  std::vector<std::pair<std::string, long>> event_counts;  ///< every event by kind, in order of first appearance
+  std::vector<BodyResult> bodies;                          ///< at t_reached
   Conservation conservation;
   RunStats stats;
-  std::vector<std::string> body_names;   ///< names snapshot samples refer to
+  std::vector<std::string> body_names;  ///< names snapshot samples refer to
   std::vector<ProbeSample> probes;
   std::vector<SnapshotSample> snapshots;
   std::vector<FrontSegment> fronts;

@@ -25,10 +25,10 @@ struct MaterialDecl {
 
 /// A piece of a body with uniform initial state.
 struct Segment {
-  double length = 1.0;           ///< natural length ΔX
-  double rapidity = 0.0;         ///< φ = artanh v (exact for ultra-relativistic bodies)
-  Stretch stretch;               ///< initial stretch
-  std::string material;          ///< scene material name (the body's unless overridden)
+  double length = 1.0;    ///< natural length ΔX
+  double rapidity = 0.0;  ///< φ = artanh v (exact for ultra-relativistic bodies)
+  Stretch stretch;        ///< initial stretch
+  std::string material;   ///< scene material name (the body's unless overridden)
 };
 
 struct BodyDecl {
@@ -50,9 +50,9 @@ struct PistonMotion {
 
 struct BoundaryDecl {
   BoundaryType type = BoundaryType::free;
-  bool bonded = false;              ///< wall/piston pulls as well as pushes
-  double position = 0.0;            ///< lab x at t = 0 (wall, piston); resolved by the loader
-  PistonMotion piston;              ///< for type == piston
+  bool bonded = false;    ///< wall/piston pulls as well as pushes
+  double position = 0.0;  ///< lab x at t = 0 (wall, piston); resolved by the loader
+  PistonMotion piston;    ///< for type == piston
   SourceLocation where;
 };
 
@@ -61,32 +61,32 @@ enum class FluxType { hll, exact };
 
 struct SolverDecl {
   SolverMethod method = SolverMethod::characteristics;
-  double tolerance = 1.0e-12;   ///< characteristics: target accuracy (fan step in Ψ)
+  double tolerance = 1.0e-12;  ///< characteristics: target accuracy (fan step in Ψ)
   /// False for the default: exact where the physics allows (linearly degenerate waves), and
   /// elsewhere the finest fans the step cap allows, with the error bound reported, not warned of.
   bool tolerance_given = false;
-  long max_fronts = 1000000;    ///< characteristics: most fronts alive at once; beyond, the run stops (status stopped)
+  long max_fronts = 1000000;  ///< characteristics: most fronts alive at once; beyond, the run stops (status stopped)
   long max_interactions = 100000000;  ///< characteristics: most interactions of a run; beyond, the run stops
-  int cells = 400;              ///< finite volume
-  int order = 2;                ///< finite volume: 1 or 2
-  double cfl = 0.5;             ///< finite volume
+  int cells = 400;                    ///< finite volume
+  int order = 2;                      ///< finite volume: 1 or 2
+  double cfl = 0.5;                   ///< finite volume
   FluxType flux = FluxType::hll;
 };
 
 struct ProbeDecl {
   std::string name;
   std::string body;
-  double X = 0.0;                       ///< material label probed (left → 0, right → l0)
+  double X = 0.0;  ///< material label probed (left → 0, right → l0)
   std::vector<Quantity> quantities;
-  double every = 0.0;                   ///< sampling interval; samples at 0, every, 2 every, ... ≤ t_end
+  double every = 0.0;  ///< sampling interval; samples at 0, every, 2 every, ... ≤ t_end
   SourceLocation where;
 };
 
 struct SnapshotDecl {
   std::vector<double> times;
   std::vector<Quantity> quantities;
-  int samples = 101;                    ///< per body, uniform in X, both ends included
-  std::vector<std::string> bodies;      ///< empty → every body
+  int samples = 101;                ///< per body, uniform in X, both ends included
+  std::vector<std::string> bodies;  ///< empty → every body
   SourceLocation where;
 };
 
@@ -98,17 +98,17 @@ struct OutputsDecl {
 
 struct Scene {
   std::string name;
-  std::string source;                   ///< file the scene was read from ("<default>" for the embedded one)
+  std::string source;  ///< file the scene was read from ("<default>" for the embedded one)
   UnitSystem units = UnitSystem::natural;
   std::vector<std::string> plugins;
   std::map<std::string, MaterialDecl> materials;
-  std::vector<BodyDecl> bodies;          ///< left to right
+  std::vector<BodyDecl> bodies;  ///< left to right
   BoundaryDecl left, right;
   SolverDecl solver;
   double t_end = 1.0;
   OutputsDecl outputs;
-  std::string resolved_yaml;             ///< the scene as run, every default filled in, in the scene's units
-  std::vector<std::string> notes;        ///< what the loader changed for an override (outputs beyond a shorter end)
+  std::string resolved_yaml;       ///< the scene as run, every default filled in, in the scene's units
+  std::vector<std::string> notes;  ///< what the loader changed for an override (outputs beyond a shorter end)
 
   [[nodiscard]] const Material& material_of(const Segment& seg) const { return *materials.at(seg.material).material; }
 };

@@ -35,10 +35,10 @@ class SampleSchedule {
  private:
   static constexpr double kNever = std::numeric_limits<double>::infinity();
   struct Stream {
-    double every = 0.0;        ///< a probe's interval (0 for a snapshot)
-    long count = 0;            ///< samples in all
-    long taken = 0;            ///< samples already made
-    std::vector<double> times; ///< a snapshot's times, sorted
+    double every = 0.0;         ///< a probe's interval (0 for a snapshot)
+    long count = 0;             ///< samples in all
+    long taken = 0;             ///< samples already made
+    std::vector<double> times;  ///< a snapshot's times, sorted
   };
   [[nodiscard]] double time_of(const Stream& s) const;
   void find_next();
