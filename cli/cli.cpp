@@ -118,6 +118,21 @@ constexpr Command kCommands[] = {
      "options:\n"
      "  --out DIR              where the images and scripts go (default RUN_DIR)\n",
      plot_command},
+    {"sweep", "rigidity sweep SWEEP.yaml [--out DIR] [-j N] [--quiet]",
+     "run a parameter sweep of a scene into one table (sweep.csv)",
+     "Reads SWEEP (a base scene, parameters by their --set key paths as values, linspace,\n"
+     "logspace or sampled ranges, and the figures of merit to collect), runs every case\n"
+     "in-process on N threads and writes DIR/sweep.csv (one row per case: case, the\n"
+     "parameters, status, exit_code, message, the figures, wall_time_s) and sweep.json\n"
+     "(every case's parameters). An invalid or inadmissible case is a row with its exit\n"
+     "code and message. Rows are written as cases finish: Ctrl-C stops cleanly (exit 130)\n"
+     "and the same command run again runs only the cases missing from sweep.csv.\n"
+     "\n"
+     "options:\n"
+     "  --out DIR              output directory (default out/<sweep file stem>)\n"
+     "  -j N                   worker threads (default: the hardware's cores)\n"
+     "  --quiet                print nothing but errors (no progress or summary)\n",
+     sweep_command},
 };
 
 const Command* find_command(std::string_view name) {

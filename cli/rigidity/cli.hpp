@@ -90,6 +90,7 @@ int materials_command(std::span<const std::string> args, std::ostream& out);
 int compare_command(std::span<const std::string> args, std::ostream& out);
 int plot_command(std::span<const std::string> args, std::ostream& out);
 int schema_command(std::span<const std::string> args, std::ostream& out);
+int sweep_command(std::span<const std::string> args, std::ostream& out);
 
 // gnuplot, shared by `compare` and `plot` (defined in plot_command.cpp).
 
