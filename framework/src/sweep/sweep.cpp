@@ -650,13 +650,7 @@ std::string sweep_csv_row(const Sweep& sweep, const SweepRow& row) {
   return line;
 }
 
-std::vector<std::size_t> read_sweep_done(const Sweep& sweep, const std::string& dir) {
-  std::vector<std::size_t> done;
-  for (const auto& entry : read_rows(sweep, fs::path(dir) / "sweep.csv")) done.push_back(entry.first);
-  return done;
-}
-
-SweepOutcome run_sweep(const Sweep& sweep, const SweepOptions& options) {
+SweepOutcome run_sweep(const Sweep& sweep, const SweepOptions& options, const SweepExecutor& executor) {
   const fs::path dir(options.out_dir);
   std::error_code ec;
   fs::create_directories(dir, ec);
@@ -679,50 +673,14 @@ SweepOutcome run_sweep(const Sweep& sweep, const SweepOptions& options) {
     if (!out) throw OutputError("cannot write " + csv.string());
   }
   std::ofstream append(csv, std::ios::binary | std::ios::app);
-  std::mutex lock;
-  std::atomic<std::size_t> next{0};
-  const auto worker = [&]() {
-    for (;;) {
-      if (interrupt_requested()) return;
-      const std::size_t at = next.fetch_add(1);
-      if (at >= pending.size()) return;
-      const std::size_t index = pending[at];
-      std::string case_dir;
-      if (sweep.keep_outputs) {
-        char name[32];
-        std::snprintf(name, sizeof name, "%04zu", index);
-        case_dir = (dir / "cases" / name).string();
-      }
-      const SweepRow row = run_sweep_case(sweep, index, case_dir);
-      if (row.status == "interrupted") return;  // cut short: run again next time
-      const std::string line = sweep_csv_row(sweep, row);
-      const std::lock_guard<std::mutex> guard(lock);
-      append << line << "\n" << std::flush;
-      rows[index] = line;
-      ++outcome.run;
-      if (row.exit_code != 0) ++outcome.failed;
-      if (options.progress) options.progress(rows.size(), sweep.cases.size());
-    }
+  const SweepRowSink done = [&](std::size_t index, int exit_code, const std::string& line) {
+    append << line << "\n" << std::flush;
+    rows[index] = line;
+    ++outcome.run;
+    if (exit_code != 0) ++outcome.failed;
+    if (options.progress) options.progress(rows.size(), sweep.cases.size());
   };
-  const unsigned jobs = std::max(1u, std::min<unsigned>(options.jobs, static_cast<unsigned>(std::max<std::size_t>(pending.size(), 1))));
-  // Plugins (the scene's, RIGIDITY_PLUGIN_PATH's) are loaded into the material registry as a
-  // scene is read; the registry is read without a lock, so load them once before the
-  // threads start, and the cases only read it.
-  if (jobs > 1) {
-    try {
-      static_cast<void>(sweep.scene_path.empty() ? load_scene_string(default_scene_text(), "<default>")
-                                                 : load_scene_file(sweep.scene_path));
-    } catch (const std::exception&) {
-      // The cases report their own errors.
-    }
-  }
-  if (jobs == 1) {
-    worker();
-  } else {
-    std::vector<std::thread> threads;
-    for (unsigned j = 0; j < jobs; ++j) threads.emplace_back(worker);
-    for (std::thread& t : threads) t.join();
-  }
+  if (!pending.empty()) executor(pending, done);
   append.close();
   if (!append) throw OutputError("cannot write " + csv.string());
   outcome.interrupted = rows.size() < sweep.cases.size();
@@ -740,6 +698,55 @@ SweepOutcome run_sweep(const Sweep& sweep, const SweepOptions& options) {
     if (ec) throw OutputError("cannot write " + csv.string() + ": " + ec.message());
   }
   return outcome;
+}
+
+SweepOutcome run_sweep(const Sweep& sweep, const SweepOptions& options) {
+  const SweepExecutor threads = [&sweep, &options](const std::vector<std::size_t>& pending, const SweepRowSink& done) {
+    std::mutex lock;
+    std::atomic<std::size_t> next{0};
+    const auto worker = [&]() {
+      for (;;) {
+        if (interrupt_requested()) return;
+        const std::size_t at = next.fetch_add(1);
+        if (at >= pending.size()) return;
+        const std::size_t index = pending[at];
+        const SweepRow row = run_sweep_case(sweep, index, sweep_case_dir(sweep, options.out_dir, index));
+        if (row.status == "interrupted") return;  // cut short: run again next time
+        const std::string line = sweep_csv_row(sweep, row);
+        const std::lock_guard<std::mutex> guard(lock);
+        done(index, row.exit_code, line);
+      }
+    };
+    const unsigned jobs = std::max(1u, std::min<unsigned>(options.jobs, static_cast<unsigned>(pending.size())));
+    // Plugins (the scene's, RIGIDITY_PLUGIN_PATH's) are loaded into the material registry as a
+    // scene is read; the registry is read without a lock, so load them once before the
+    // threads start, and the cases only read it.
+    if (jobs > 1) warm_up(sweep);
+    if (jobs == 1) {
+      worker();
+    } else {
+      std::vector<std::thread> workers;
+      for (unsigned j = 0; j < jobs; ++j) workers.emplace_back(worker);
+      for (std::thread& t : workers) t.join();
+    }
+  };
+  return run_sweep(sweep, options, threads);
+}
+
+std::string sweep_case_dir(const Sweep& sweep, const std::string& out_dir, std::size_t index) {
+  if (!sweep.keep_outputs) return "";
+  char name[32];
+  std::snprintf(name, sizeof name, "%04zu", index);
+  return (fs::path(out_dir) / "cases" / name).string();
+}
+
+void warm_up(const Sweep& sweep) {
+  try {
+    static_cast<void>(sweep.scene_path.empty() ? load_scene_string(default_scene_text(), "<default>")
+                                               : load_scene_file(sweep.scene_path));
+  } catch (const std::exception&) {
+    // The cases report their own errors.
+  }
 }
 
 }  // namespace rigidity

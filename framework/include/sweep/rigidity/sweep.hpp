@@ -73,8 +73,19 @@ struct SweepOutcome {
 /// \throws OutputError if the directory cannot be written or its sweep.csv is another sweep's
 SweepOutcome run_sweep(const Sweep& sweep, const SweepOptions& options);
 
-/// Rows from a distributed run (MPI): the runner hands rows in, rank 0 writes.
-/// `done_before`: the case indices sweep.csv in `dir` already holds (read by read_sweep_done).
-[[nodiscard]] std::vector<std::size_t> read_sweep_done(const Sweep& sweep, const std::string& dir);
+/// What runs the cases for run_sweep: it runs the case indices `pending` (in any order,
+/// anywhere: threads, MPI ranks) and hands each finished row to `done` (one call at a time),
+/// and stops handing out cases once interrupt_requested().
+using SweepRowSink = std::function<void(std::size_t index, int exit_code, const std::string& csv_row)>;
+using SweepExecutor = std::function<void(const std::vector<std::size_t>& pending, const SweepRowSink& done)>;
+
+/// Where a case's run directory goes (keep_outputs: DIR/cases/NNNN), or "" (no files).
+[[nodiscard]] std::string sweep_case_dir(const Sweep& sweep, const std::string& out_dir, std::size_t index);
+/// Loads the base scene once, so that the plugins it needs are in the registry before
+/// cases run concurrently (errors are left to the cases).
+void warm_up(const Sweep& sweep);
+
+/// run_sweep with the cases run by `executor` instead of options.jobs threads.
+SweepOutcome run_sweep(const Sweep& sweep, const SweepOptions& options, const SweepExecutor& executor);
 
 }  // namespace rigidity
