@@ -120,8 +120,8 @@ void mpi_worker(const Sweep& sweep, const std::string& out_dir) {
     if (status.MPI_TAG == kTagStop) return;
     const SweepRow row = run_sweep_case(sweep, index, sweep_case_dir(sweep, out_dir, index));
     // A case cut short by Ctrl-C goes back as no row: it runs again next time.
-    message = row.status == "interrupted" ? std::string()
-                                          : std::to_string(row.exit_code) + " " + sweep_csv_row(sweep, row);
+    message =
+        row.status == "interrupted" ? std::string() : std::to_string(row.exit_code) + " " + sweep_csv_row(sweep, row);
   }
 }
 #endif
@@ -136,7 +136,8 @@ int sweep_command(std::span<const std::string> args, std::ostream& out) {
     return kExitOk;
   }
   if (parsed.positional.size() != 1) throw usage_error("sweep", "sweep takes one sweep file");
-  if (const auto dir = parsed.value("--out"); dir && dir->empty()) throw usage_error("sweep", "--out needs a directory");
+  if (const auto dir = parsed.value("--out"); dir && dir->empty())
+    throw usage_error("sweep", "--out needs a directory");
   unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
   if (const auto j = parsed.value("-j")) {
     try {

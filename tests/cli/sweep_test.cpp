@@ -1,5 +1,7 @@
 // rigidity sweep (SPEC §6): the figures it collects against the paper's closed forms,
 // the same table whatever the number of threads, resumption, and bad input.
+#include "rigidity/sweep.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +11,6 @@
 #include <vector>
 
 #include "rigidity/errors.hpp"
-#include "rigidity/sweep.hpp"
 #include "run_cli.hpp"
 
 namespace rigidity::testing {
@@ -86,9 +87,9 @@ TEST_F(SweepTest, PaperSceneAgainstClosedForms) {
   ASSERT_EQ(outcome.exit_status, 0) << outcome.err;
   const Rows rows = read_csv(dir() / "out/paper/sweep.csv");
   ASSERT_EQ(rows.size(), 10u);
-  EXPECT_EQ(rows[0], (std::vector<std::string>{"case", "bodies.0.velocity", "time.end", "status", "exit_code", "message", "p_max",
-                                               "contact_time", "rebound", "cavitations", "error_bound",
-                                               "wall_time_s"}));
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"case", "bodies.0.velocity", "time.end", "status", "exit_code",
+                                               "message", "p_max", "contact_time", "rebound", "cavitations",
+                                               "error_bound", "wall_time_s"}));
   for (std::size_t i = 1; i < rows.size(); ++i) {
     const double v = 0.1 * static_cast<double>(i);
     const auto& row = rows[i];
@@ -210,7 +211,8 @@ TEST_F(SweepTest, GridsZipAndSamples) {
   EXPECT_EQ(strata, std::vector<int>(8, 1));  // one sample in each eighth of the range
   EXPECT_EQ(load_sweep_file((dir() / "latin.yaml").string()).cases, latin.cases);  // seeded
 
-  write_file("log.yaml", "parameters:\n  bodies.0.length: {range: [0.01, 100]}\nsample: {n: 50, method: log_uniform}\n");
+  write_file("log.yaml",
+             "parameters:\n  bodies.0.length: {range: [0.01, 100]}\nsample: {n: 50, method: log_uniform}\n");
   for (const auto& c : load_sweep_file((dir() / "log.yaml").string()).cases) {
     EXPECT_GE(std::stod(c[0]), 0.01);
     EXPECT_LE(std::stod(c[0]), 100.0);

@@ -111,8 +111,9 @@ std::vector<double> spaced(const SweepReader& reader, const YAML::Node& node, co
     const double f = n == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(n - 1);
     // (a (n-1-i) + b i) / (n-1): 0.1, 0.2, ... come out as written, not 0.09999999999999999.
     double v = log ? a * std::pow(b / a, f)
-               : n == 1 ? a
-                        : (a * static_cast<double>(n - 1 - i) + b * static_cast<double>(i)) / static_cast<double>(n - 1);
+               : n == 1
+                   ? a
+                   : (a * static_cast<double>(n - 1 - i) + b * static_cast<double>(i)) / static_cast<double>(n - 1);
     if (i == n - 1 && n > 1) v = b;
     values.push_back(v);
   }
@@ -234,8 +235,7 @@ Sweep load_sweep_file(const std::string& path) {
     const auto seed = sample["seed"] ? static_cast<std::uint64_t>(reader.integer(sample["seed"], "sample.seed", 0)) : 0;
     const std::string method = sample["method"] ? reader.text(sample["method"], "sample.method") : "uniform";
     if (method != "uniform" && method != "log_uniform" && method != "latin")
-      reader.fail(sample["method"], "sample.method",
-                  "must be uniform, log_uniform or latin, not '" + method + "'");
+      reader.fail(sample["method"], "sample.method", "must be uniform, log_uniform or latin, not '" + method + "'");
     if (ranged.empty()) reader.fail(sample, "sample", "no parameter has a range: to sample");
     for (std::size_t k : ranged)
       if (method == "log_uniform" && !(decls[k].low > 0.0))
@@ -247,7 +247,8 @@ Sweep load_sweep_file(const std::string& path) {
       for (auto& perm : strata) {
         perm.resize(sample_n);
         for (std::size_t i = 0; i < sample_n; ++i) perm[i] = i;
-        for (std::size_t i = sample_n; i > 1; --i) std::swap(perm[i - 1], perm[static_cast<std::size_t>(unit(rng) * static_cast<double>(i))]);
+        for (std::size_t i = sample_n; i > 1; --i)
+          std::swap(perm[i - 1], perm[static_cast<std::size_t>(unit(rng) * static_cast<double>(i))]);
       }
     for (std::size_t i = 0; i < sample_n; ++i) {
       std::vector<std::string> row;
@@ -289,8 +290,8 @@ Sweep load_sweep_file(const std::string& path) {
   for (const Axis& d : dims) total *= d.size;
   constexpr std::size_t kMaxCases = 100'000'000;
   if (total > kMaxCases)
-    reader.fail(params, "parameters", "the sweep has " + std::to_string(total) + " cases, more than " +
-                                          std::to_string(kMaxCases));
+    reader.fail(params, "parameters",
+                "the sweep has " + std::to_string(total) + " cases, more than " + std::to_string(kMaxCases));
   sweep.cases.assign(total, std::vector<std::string>(decls.size()));
   for (std::size_t i = 0; i < total; ++i) {
     std::size_t rest = i;
@@ -327,14 +328,13 @@ Sweep load_sweep_file(const std::string& path) {
             (parts.size() == 4 && (parts[2] == "count" || (parts[3] != "t" && parts[3] != "x"))))
           bad("an event figure is event.KIND.(first|last)[.t|.x] or event.KIND.count");
       } else if (parts[0] == "body") {
-        static const std::vector<std::string> fields = {"x_left",   "x_right",        "velocity_mean",  "momentum",
-                                                        "energy",   "kinetic_energy", "internal_energy", "rest_energy"};
+        static const std::vector<std::string> fields = {"x_left", "x_right",        "velocity_mean",   "momentum",
+                                                        "energy", "kinetic_energy", "internal_energy", "rest_energy"};
         if (parts.size() != 3) bad("a body figure is body.NAME.FIELD");
         if (std::find(fields.begin(), fields.end(), parts[2]) == fields.end())
           bad("unknown body field '" + parts[2] + "'; did you mean '" + closest_match(parts[2], fields) + "'?");
       } else {
-        static const std::vector<std::string> scalars = {
-            "t_end", "solver", "conservation", "stats"};
+        static const std::vector<std::string> scalars = {"t_end", "solver", "conservation", "stats"};
         if (std::find(scalars.begin(), scalars.end(), parts[0]) == scalars.end())
           bad("a figure is probe..., event..., body... or a scalar of summary.json (t_end, solver.X, "
               "conservation.X, stats.X)");
@@ -431,11 +431,10 @@ std::optional<double> figure(const std::string& path, const Scene& scene, const 
   if (parts[0] == "probe") {
     const Quantity q = *quantity_from_string(parts[2]);
     if (const auto* stat = recorder.probe(parts[1] + "." + parts[2])) {
-      const double natural = parts[3] == "max"   ? stat->max
-                             : parts[3] == "min" ? stat->min
-                             : parts[3] == "final"
-                                 ? stat->final
-                                 : stat->sum / static_cast<double>(stat->count);
+      const double natural = parts[3] == "max"     ? stat->max
+                             : parts[3] == "min"   ? stat->min
+                             : parts[3] == "final" ? stat->final
+                                                   : stat->sum / static_cast<double>(stat->count);
       value = from_natural(natural, dimension_of(q), u);
     }
   } else if (parts[0] == "event") {
@@ -443,7 +442,8 @@ std::optional<double> figure(const std::string& path, const Scene& scene, const 
     if (parts[2] == "count") return stat ? static_cast<double>(stat->count) : 0.0;
     if (!stat) return std::nullopt;
     const bool x = parts.size() == 4 && parts[3] == "x";
-    const double natural = parts[2] == "first" ? (x ? stat->first_x : stat->first_t) : (x ? stat->last_x : stat->last_t);
+    const double natural =
+        parts[2] == "first" ? (x ? stat->first_x : stat->first_t) : (x ? stat->last_x : stat->last_t);
     value = from_natural(natural, x ? Dimension::length : Dimension::time, u);
   } else if (parts[0] == "body") {
     for (const BodyResult& b : result.bodies) {
@@ -580,8 +580,8 @@ std::string join_header(const Sweep& sweep) {
 
 void write_json(const Sweep& sweep, const fs::path& file) {
   std::ofstream out(file);
-  out << "{\n  \"source\": " << json_string(sweep.source) << ",\n  \"scene\": "
-      << (sweep.scene_path.empty() ? std::string("\"<default>\"") : json_string(sweep.scene_path))
+  out << "{\n  \"source\": " << json_string(sweep.source)
+      << ",\n  \"scene\": " << (sweep.scene_path.empty() ? std::string("\"<default>\"") : json_string(sweep.scene_path))
       << ",\n  \"parameters\": [";
   for (std::size_t k = 0; k < sweep.parameters.size(); ++k) out << (k ? ", " : "") << json_string(sweep.parameters[k]);
   out << "],\n  \"collect\": {";

@@ -22,10 +22,10 @@ struct SweepCollect {
 /// A sweep file, read and checked; `cases` holds every case's parameter values, as
 /// the text `--set` would be given, in case order.
 struct Sweep {
-  std::string source;      ///< the sweep file
-  std::string scene_path;  ///< the base scene (relative paths resolved); empty: the embedded default
-  std::vector<std::string> parameters;           ///< key paths, in file order
-  std::vector<std::vector<std::string>> cases;   ///< cases[i][k]: parameter k of case i
+  std::string source;                   ///< the sweep file
+  std::string scene_path;               ///< the base scene (relative paths resolved); empty: the embedded default
+  std::vector<std::string> parameters;  ///< key paths, in file order
+  std::vector<std::vector<std::string>> cases;  ///< cases[i][k]: parameter k of case i
   std::vector<SweepCollect> collect;
   bool keep_outputs = false;
 };
