@@ -134,6 +134,26 @@ TEST_F(SweepTest, InvalidAndInadmissibleCasesAreRows) {
   EXPECT_EQ(rows[2][5], "");  // undefined: an empty cell, never NaN
 }
 
+// wave_speed is a parameter of hooke, not of rigid: dropped for the rigid cases, with a note.
+TEST_F(SweepTest, KeysTheModelLacksAreIgnored) {
+  write_file("models.yaml",
+             "parameters:\n"
+             "  bodies.0.velocity: {values: [0.3]}\n"
+             "  materials.rigid_steel.model: {values: [rigid, hooke]}\n"
+             "  materials.rigid_steel.wave_speed: {values: [0.5]}\n"
+             "collect: {p_max: probe.wall.p.max}\n");
+  const CliOutcome outcome = rigidity("sweep models.yaml -j 2");
+  ASSERT_EQ(outcome.exit_status, 0) << outcome.err;
+  const Rows rows = read_csv(dir() / "out/models/sweep.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[1][column(rows, "status")], "ok");
+  EXPECT_TRUE(contains(rows[1][column(rows, "message")], "materials.rigid_steel.wave_speed ignored"));
+  EXPECT_NEAR(std::stod(rows[1][column(rows, "p_max")]), 0.3 / 0.7, 1e-9);
+  EXPECT_EQ(rows[2][column(rows, "status")], "ok");
+  EXPECT_EQ(rows[2][column(rows, "message")], "");
+  EXPECT_NE(rows[2][column(rows, "p_max")], rows[1][column(rows, "p_max")]);
+}
+
 TEST_F(SweepTest, ResumesWhereItStopped) {
   write_file("paper.yaml", kPaperSweep);
   ASSERT_EQ(rigidity("sweep paper.yaml -j 2 --quiet").exit_status, 0);
