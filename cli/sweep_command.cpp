@@ -2,6 +2,7 @@
 // into one table (SPEC §6). Ctrl-C stops handing out cases; a re-run resumes.
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
@@ -174,7 +175,10 @@ int sweep_command(std::span<const std::string> args, std::ostream& out) {
   options.jobs = jobs;
   const bool terminal = !quiet && ::isatty(STDERR_FILENO) == 1;
   if (terminal)
-    options.progress = [](std::size_t done, std::size_t total) {
+    options.progress = [last = std::chrono::steady_clock::time_point{}](std::size_t done, std::size_t total) mutable {
+      const auto now = std::chrono::steady_clock::now();
+      if (done < total && now - last < std::chrono::milliseconds(100)) return;  // a few lines a second
+      last = now;
       std::cerr << "\rsweep: " << done << " / " << total << " cases | Ctrl-C stops, a re-run resumes" << std::flush;
     };
 
