@@ -12,7 +12,9 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <atomic>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -24,6 +26,7 @@
 #include "rigidity/solvers/riemann.hpp"
 #include "rigidity/solvers/solve.hpp"
 #include "rigidity/solvers/wall_impact.hpp"
+#include "rigidity/sweep.hpp"
 
 namespace py = pybind11;
 
@@ -222,6 +225,51 @@ rigidity::State state_from(double velocity, double stretch) {
 
 }  // namespace
 
+/// A sweep run in this process, no files written: its table as columns (parameters as the
+/// text given, figures NaN where undefined).
+py::dict sweep_table(const std::string& path, unsigned jobs) {
+  const rigidity::Sweep sweep = rigidity::load_sweep_file(path);
+  std::vector<rigidity::SweepRow> rows(sweep.cases.size());
+  {
+    py::gil_scoped_release release;
+    rigidity::warm_up(sweep);
+    std::atomic<std::size_t> next{0};
+    const auto work = [&] {
+      for (std::size_t i = next++; i < rows.size(); i = next++) rows[i] = rigidity::run_sweep_case(sweep, i);
+    };
+    std::vector<std::thread> workers;
+    for (unsigned k = 1; k < std::max(1u, jobs); ++k) workers.emplace_back(work);
+    work();
+    for (std::thread& w : workers) w.join();
+  }
+  py::dict out;
+  std::vector<double> index, exit_code, wall;
+  py::list status, message;
+  for (const rigidity::SweepRow& r : rows) {
+    index.push_back(static_cast<double>(r.index));
+    exit_code.push_back(r.exit_code);
+    wall.push_back(r.wall_time_s);
+    status.append(r.status);
+    message.append(r.message);
+  }
+  out["case"] = column(index);
+  for (std::size_t k = 0; k < sweep.parameters.size(); ++k) {
+    py::list values;
+    for (const std::vector<std::string>& c : sweep.cases) values.append(c[k]);
+    out[py::str(sweep.parameters[k])] = py::array(values);
+  }
+  out["status"] = py::array(status);
+  out["exit_code"] = column(exit_code);
+  out["message"] = py::array(message);
+  for (std::size_t f = 0; f < sweep.collect.size(); ++f) {
+    std::vector<double> values;
+    for (const rigidity::SweepRow& r : rows) values.push_back(r.figures[f].value_or(kNaN));
+    out[py::str(sweep.collect[f].name)] = column(values);
+  }
+  out["wall_time_s"] = column(wall);
+  return out;
+}
+
 PYBIND11_MODULE(_rigidity, m) {
   m.doc() = "rigidity's C++ core; use the package rigidity";
 
@@ -250,6 +298,7 @@ PYBIND11_MODULE(_rigidity, m) {
       .def_property_readonly("warnings", [](const Run& r) { return r.result.warnings; })
       .def_property_readonly("status", [](const Run& r) { return r.result.status; });
 
+  m.def("sweep", &sweep_table, py::arg("path"), py::arg("jobs") = 1u);
   m.def("run_file", &run_file, py::arg("path"), py::arg("overrides") = std::vector<std::string>{});
   m.def("run_text", &run_text, py::arg("text"), py::arg("source"), py::arg("overrides") = std::vector<std::string>{});
 

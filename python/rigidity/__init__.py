@@ -30,6 +30,7 @@ __all__ = [
     "material",
     "riemann",
     "load_plugin",
+    "sweep",
     "Material",
     "InputError",
     "InadmissibleError",
@@ -116,3 +117,13 @@ def riemann(left_material, left, right_material, right, min_pressure=None):
 def load_plugin(path):
     """Loads a material plugin (a shared library); returns the names of its materials."""
     return _rigidity.load_plugin(_os.fspath(path))
+
+
+def sweep(path, jobs=None):
+    """Runs a sweep file (SPEC §6) in this process, writing no files, and returns its table
+    as a dict of NumPy columns: case, each parameter (as given), status, exit_code, message,
+    each `collect` figure (NaN where undefined) and wall_time_s. `jobs` threads (default:
+    the machine's cores); `rigidity sweep` writes the same table to sweep.csv."""
+    if jobs is None:
+        jobs = _os.cpu_count() or 1
+    return _rigidity.sweep(_os.fspath(path), int(jobs))

@@ -191,3 +191,15 @@ def test_a_solve_releases_the_gil():
     assert elapsed > 0.05, "the scene should take a while"
     # With the GIL held the counter could not tick while the scene was solved.
     assert ticks[0] > 0.2 * elapsed / 0.0011
+
+
+def test_sweep_returns_the_table_against_the_closed_forms():
+    table = rigidity.sweep(os.path.join(SOURCE, "examples", "sweeps", "paper_velocity.yaml"), jobs=2)
+    v = table["bodies.0.velocity"].astype(float)
+    assert len(v) == 19 and np.all(table["exit_code"] == 0)
+    np.testing.assert_allclose(table["p_max"], v / (1 - v), rtol=1e-9)           # rho00 v/(1 - v)
+    contact = 2 * np.sqrt((1 - v) / (1 + v))
+    ends = contact < 1.5  # the default scene runs to t = 1.5: a later separation is not in it (NaN)
+    np.testing.assert_array_equal(np.isfinite(table["contact_time"]), ends)
+    np.testing.assert_allclose(table["contact_time"][ends], contact[ends], rtol=1e-9)
+    np.testing.assert_allclose(table["rebound"][ends], -v[ends], rtol=1e-9)
