@@ -451,19 +451,33 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     if (holder != kNone && !sol.parted) hold_back_weak_wave(sol, left_region, right_region, holder, min_p, t);
   }
 
-  // Emit the waves.
+  // A crack this close to a free end would leave a droplet: the droplet stays with the
+  // rest of the piece (see absorb_droplet), and only the rest's wave is emitted.
   const double XL = label_in(left_piece), XR = label_in(right_piece);
+  int droplet = 0;  // −1: the droplet is left of the crack, +1: right of it
+  if (sol.parted && !left_boundary && !right_boundary && contact_left == kNone && interface == kNone &&
+      left_piece == right_piece && mL == mR) {
+    droplet = droplet_side(left_piece, XL, t);
+    if (droplet != 0) {
+      const State& kept = droplet < 0 ? sol.right : sol.left;  // the rest's released state
+      absorb_droplet(left_piece, droplet, before, XL, droplet < 0 ? left_region : right_region, kept, t);
+      (droplet < 0 ? sol.left : sol.right) = kept;
+      sol.parted = false;
+    }
+  }
+
+  // Emit the waves.
   emitted_left_.clear();
   emitted_right_.clear();
   WaveStates& wl = wave_left_;
   WaveStates& wr = wave_right_;
   wl.states.clear();
   wr.states.clear();
-  if (!left_boundary) {
+  if (!left_boundary && droplet >= 0) {
     wave(*mL, left_region.state, sol.left, -1, wl);
     emit_fronts(*mL, wl, -1, left_piece, t, XL, x, emitted_left_);
   }
-  if (!right_boundary) {
+  if (!right_boundary && droplet <= 0) {
     wave(*mR, right_region.state, sol.right, +1, wr);
     emit_fronts(*mR, wr, +1, right_piece, t, XR, x, emitted_right_);
     // Emitted from the outer state inwards; in space the C+ fan's head (next to the
@@ -497,7 +511,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   }
 
   // Left part: before → C− fronts → (interface | contact_left | new right end | first C+ front ...)
-  int cursor = left_boundary ? first : before;
+  int cursor = left_boundary ? first : droplet < 0 ? pieces_[left_piece].left_end : before;
   for (std::size_t k = 0; k < emitted_left_.size(); ++k) {
     const int id = emitted_left_[k];
     nodes_[id].right = states_of_left(k);
@@ -516,6 +530,8 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     right_holder = interface;
   } else if (contact_right != kNone) {
     right_holder = contact_right;
+  } else if (droplet > 0) {
+    right_holder = kNone;  // the last C− front holds the droplet's state, up to the right end
   } else {
     right_holder = cursor;  // plain crossing: the C+ fronts follow the C− fronts
   }
@@ -573,9 +589,11 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     settle(pieces_[left_piece].right_end);
     settle(pieces_[new_piece].left_end);
   }
+  if (droplet < 0) settle(pieces_[left_piece].left_end);
+  if (droplet > 0) settle(pieces_[left_piece].right_end);
 
   // New meetings: each node of the rebuilt stretch with its right neighbour.
-  touched_.push_back(left_boundary ? first : before);
+  touched_.push_back(left_boundary ? first : droplet < 0 ? pieces_[left_piece].left_end : before);
   touched_.insert(touched_.end(), emitted_left_.begin(), emitted_left_.end());
   if (right_holder != kNone) touched_.push_back(right_holder);
   touched_.insert(touched_.end(), emitted_right_.begin(), emitted_right_.end());
@@ -587,7 +605,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   for (int id : emitted_right_) merge_neighbours(id, t);
   for (int id : emitted_left_) merge_nearby(id, t);
   for (int id : emitted_right_) merge_nearby(id, t);
-  if (ends_moved || sol.parted)
+  if (ends_moved || sol.parted || droplet != 0)
     for (int p : {left_piece, right_piece, new_piece})
       if (p != kNone) schedule_gaps_around(p);
 }

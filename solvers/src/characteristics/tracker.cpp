@@ -193,7 +193,7 @@ RunResult Tracker::run() {
   // together exceed the incoming strength for a wave entering a softer material). The bound
   // takes that growth as a factor kStability, measured on the test suite's scenes (at most
   // 1.4 there), not proven.
-  const double booked = error_defects_ + error_fans_ + error_fans_alive + error_merges_;
+  const double booked = error_defects_ + error_fans_ + error_fans_alive + error_merges_ + error_droplets_;
   const double error_bound = kStability * booked / total_length_;
   result_.solver_numbers.emplace_back("error_bound", error_bound);
   result_.solver_numbers.emplace_back("weak_wave_threshold", weak_);
@@ -202,6 +202,8 @@ RunResult Tracker::run() {
   result_.solver_numbers.emplace_back("error_defects", error_defects_ / total_length_);
   result_.solver_numbers.emplace_back("error_fans", (error_fans_ + error_fans_alive) / total_length_);
   result_.solver_numbers.emplace_back("error_merges", error_merges_ / total_length_);
+  result_.solver_numbers.emplace_back("droplets", static_cast<double>(droplets_));
+  result_.solver_numbers.emplace_back("error_droplets", error_droplets_ / total_length_);
   result_.solver_numbers.emplace_back("fronts_alive_max", static_cast<double>(live_fronts_max_));
   Conservation& c = result_.conservation;
   totals(t_end, c.energy_final, c.momentum_final);

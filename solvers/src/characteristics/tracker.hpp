@@ -226,6 +226,8 @@ class Tracker {
   void reanchor(int id, double t);
   void split_piece(int left_node, int right_node, const State& left_state, const State& right_state,
                    const Region& left_region, const Region& right_region, double t, double X, double x);
+  int droplet_side(int piece, double X, double t) const;
+  void absorb_droplet(int piece, int side, int before, double X, const Region& straddling, const State& kept, double t);
   void set_attach(int end, Attach attach, int partner, double t);
   void flush_wall(int side, double t);
   // ---- outputs --------------------------------------------------------------------------
@@ -271,6 +273,8 @@ class Tracker {
     }
   }
   double error_merges_ = 0.0;  ///< L1 error of fronts merged
+  double error_droplets_ = 0.0;  ///< L1 error of droplets kept with their piece
+  long droplets_ = 0;
   long merged_ = 0;
   long live_fronts_max_ = 0;
 
