@@ -272,7 +272,7 @@ class Tracker {
       merge_ = std::max(merge_base_, merge_ / 1.01);
     }
   }
-  double error_merges_ = 0.0;  ///< L1 error of fronts merged
+  double error_merges_ = 0.0;    ///< L1 error of fronts merged
   double error_droplets_ = 0.0;  ///< L1 error of droplets kept with their piece
   long droplets_ = 0;
   long merged_ = 0;
