@@ -136,21 +136,40 @@ void print_summary(std::ostream& out, const Scene& scene, const RunResult& resul
   // energy_final = energy_initial + wall_work - energy_dissipated,
   // momentum_final = momentum_initial + wall_impulse (SPEC §5).
   const Conservation& c = result.conservation;
-  const double energy_residual = c.energy_final + c.energy_dissipated - c.energy_initial - c.wall_work;
-  const double momentum_residual = c.momentum_final - c.momentum_initial - c.wall_impulse;
+  const double energy_residual =
+      c.energy_final + c.energy_dissipated - c.energy_initial - c.wall_work - c.energy_droplets;
+  const double momentum_residual = c.momentum_final - c.momentum_initial - c.wall_impulse - c.momentum_droplets;
+  const bool droplets = c.energy_droplets != 0.0 || c.momentum_droplets != 0.0;
   const double energy_scale = std::max(std::abs(c.energy_initial), std::abs(c.energy_final));
   const double momentum_scale =
       std::max({std::abs(c.momentum_initial), std::abs(c.momentum_final), std::abs(c.wall_impulse)});
   const Dimension E = Dimension::energy_per_area;
   const Dimension P = Dimension::momentum_per_area;
   out << "conservation:\n";
-  Table balance({"", "initial", "final", "walls", "dissipated", "residual", "relative"});
-  balance.add({units.label("energy", E), units(c.energy_initial, E), units(c.energy_final, E), units(c.wall_work, E),
-               units(c.energy_dissipated, E), number(from_natural(energy_residual, E, scene.units), 3),
-               energy_scale > 0.0 ? number(std::abs(energy_residual) / energy_scale, 2) : "-"});
-  balance.add({units.label("momentum", P), units(c.momentum_initial, P), units(c.momentum_final, P),
-               units(c.wall_impulse, P), "", number(from_natural(momentum_residual, P, scene.units), 3),
-               momentum_scale > 0.0 ? number(std::abs(momentum_residual) / momentum_scale, 2) : "-"});
+  std::vector<std::string> head{"", "initial", "final", "walls", "dissipated", "residual", "relative"};
+  std::vector<std::string> energy{units.label("energy", E),
+                                  units(c.energy_initial, E),
+                                  units(c.energy_final, E),
+                                  units(c.wall_work, E),
+                                  units(c.energy_dissipated, E),
+                                  number(from_natural(energy_residual, E, scene.units), 3),
+                                  energy_scale > 0.0 ? number(std::abs(energy_residual) / energy_scale, 2) : "-"};
+  std::vector<std::string> momentum{
+      units.label("momentum", P),
+      units(c.momentum_initial, P),
+      units(c.momentum_final, P),
+      units(c.wall_impulse, P),
+      "",
+      number(from_natural(momentum_residual, P, scene.units), 3),
+      momentum_scale > 0.0 ? number(std::abs(momentum_residual) / momentum_scale, 2) : "-"};
+  if (droplets) {  // the droplet model's change, before the residual
+    head.insert(head.begin() + 5, "droplets");
+    energy.insert(energy.begin() + 5, units(c.energy_droplets, E));
+    momentum.insert(momentum.begin() + 5, units(c.momentum_droplets, P));
+  }
+  Table balance(head);
+  balance.add(energy);
+  balance.add(momentum);
   balance.print(out);
 
   std::vector<std::string> files{"summary.json", "events.csv"};

@@ -162,7 +162,7 @@ TEST(Collision, ASliverShorterThanTheToleranceStaysWithItsPieceAndIsBooked) {
   // ℓ_min = 1e-3 × 0.5 > 1e-4: no crack; the sliver takes the state the rest is released
   // to (unstrained, −v instead of +v). Its length times the rapidity it lost is the error
   // booked (mean over the bodies' length 0.5001, times the stability factor 2), and the
-  // momentum it lost, 2 ρ00 γ v × 1e-4, is all the books miss.
+  // momentum it lost, 2 ρ00 γ v × 1e-4, is booked as the droplets' share of the balance.
   const RunResult r = run_yaml(cradle(1e-3));
   EXPECT_EQ(count_events(r, "cavitation"), 0u);
   ASSERT_EQ(r.bodies.size(), 2u);
@@ -176,7 +176,10 @@ TEST(Collision, ASliverShorterThanTheToleranceStaysWithItsPieceAndIsBooked) {
   const Conservation& c = r.conservation;
   const double lost_momentum = 2.0 * 0.3 / std::sqrt(1.0 - 0.09) * sliver;
   EXPECT_NEAR(c.momentum_initial - c.momentum_final, lost_momentum, 1e-9 * lost_momentum);
+  EXPECT_NEAR(c.momentum_droplets, -lost_momentum, 1e-9 * lost_momentum);
+  EXPECT_NEAR(c.momentum_final - c.momentum_initial - c.momentum_droplets, 0.0, 1e-15);
   EXPECT_NEAR(c.energy_final, c.energy_initial, 1e-12);
+  EXPECT_NEAR(c.energy_droplets, 0.0, 1e-15);  // unstrained at −v instead of +v: the same energy
 }
 
 // ---- the shock tube of the constant-sound-speed fluid --------------------------------

@@ -132,6 +132,12 @@ std::string summary_json(const Scene& scene, const RunResult& result) {
   // Beyond SPEC §5: the energy walls and pistons gave, so that the energy balance
   // energy_final = energy_initial + wall_work - energy_dissipated can be checked too.
   w.member("wall_work", c.wall_work, Dimension::energy_per_area);
+  if (c.energy_droplets != 0.0 || c.momentum_droplets != 0.0) {
+    // energy_final = energy_initial + wall_work - energy_dissipated + energy_droplets, and
+    // momentum_final = momentum_initial + wall_impulse + momentum_droplets.
+    w.member("energy_droplets", c.energy_droplets, Dimension::energy_per_area);
+    w.member("momentum_droplets", c.momentum_droplets, Dimension::momentum_per_area);
+  }
   json.end_object();
 
   json.key("stats").begin_object();

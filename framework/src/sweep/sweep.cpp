@@ -477,6 +477,8 @@ std::optional<double> figure(const std::string& path, const Scene& scene, const 
     if (parts[1] == "momentum_initial") value = from_natural(c.momentum_initial, P, u);
     if (parts[1] == "momentum_final") value = from_natural(c.momentum_final, P, u);
     if (parts[1] == "wall_impulse") value = from_natural(c.wall_impulse, P, u);
+    if (parts[1] == "energy_droplets") value = from_natural(c.energy_droplets, E, u);
+    if (parts[1] == "momentum_droplets") value = from_natural(c.momentum_droplets, P, u);
   }
   if (value && !std::isfinite(*value)) return std::nullopt;  // never a NaN in the table
   return value;

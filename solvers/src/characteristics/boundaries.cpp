@@ -135,6 +135,7 @@ bool Tracker::rejoin(int right_end, int left_end, double t, double x) {
   for (int n = junction; n != kNone; n = nodes_[n].next) nodes_[n].piece = a;
   pieces_[a].right_end = pieces_[b].right_end;
   pieces_[b].left_end = pieces_[b].right_end = kNone;  // gone
+  --body_pieces_[pieces_[a].body];
   order_.erase(std::find(order_.begin(), order_.end(), b));
   event(t, "rejoin", x, {piece_body_name(a)});
   resolve(junction, junction, t);
@@ -147,7 +148,7 @@ bool Tracker::rejoin(int right_end, int left_end, double t, double x) {
 /// +1: right of it; 0: no droplet, or it holds an interface or touches something).
 int Tracker::droplet_side(int piece, double X, double t) const {
   const Piece& p = pieces_[piece];
-  const double limit = scene_.solver.tolerance * scene_.bodies[p.body].natural_length();
+  const double limit = scene_.solver.tolerance * droplet_scale_[p.body] * scene_.bodies[p.body].natural_length();
   const double left = X - nodes_[p.left_end].X_at(t), right = nodes_[p.right_end].X_at(t) - X;
   const int side = left <= right ? -1 : +1;
   if (!(std::min(left, right) < limit)) return 0;
@@ -174,9 +175,12 @@ void Tracker::absorb_droplet(int piece, int side, int before, double X, const Re
                              double t) {
   const Material& m = *straddling.material;
   const double psi_kept = memo_->psi(m, kept.stretch);
+  const double energy_kept = energy_density(m, kept), momentum_kept = momentum_density(m, kept);
   auto book = [&](const Region& r, double length) {
     error_droplets_ += std::abs(length) * (std::abs(r.state.rapidity - kept.rapidity) +
                                            std::abs(memo_->psi(*r.material, r.state.stretch) - psi_kept));
+    droplet_energy_ += length * (energy_kept - energy_density(*r.material, r.state));
+    droplet_momentum_ += length * (momentum_kept - momentum_density(*r.material, r.state));
   };
   // The fronts inside the droplet: between the left end and the crack, or the crack and the right end.
   std::vector<int>& inside = touched_;
@@ -232,6 +236,7 @@ void Tracker::split_piece(int left_node, int right_node, const State& left_state
   const int old_piece = nodes_[left_node].piece;
   const int new_piece = static_cast<int>(pieces_.size());
   pieces_.push_back(Piece{pieces_[old_piece].body, kNone, kNone});
+  ++body_pieces_[pieces_[old_piece].body];
   const int old_right_end = pieces_[old_piece].right_end;
 
   const int r_end = new_node(NodeKind::right_end, old_piece);

@@ -457,6 +457,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   int droplet = 0;  // −1: the droplet is left of the crack, +1: right of it
   if (sol.parted && !left_boundary && !right_boundary && contact_left == kNone && interface == kNone &&
       left_piece == right_piece && mL == mR) {
+    steer_droplets(pieces_[left_piece].body);
     droplet = droplet_side(left_piece, XL, t);
     if (droplet != 0) {
       const State& kept = droplet < 0 ? sol.right : sol.left;  // the rest's released state

@@ -20,6 +20,8 @@ void Tracker::build_bodies() {
     const int piece = static_cast<int>(pieces_.size());
     pieces_.push_back(Piece{static_cast<int>(b), kNone, kNone});
     order_.push_back(piece);
+    body_pieces_.push_back(1);
+    droplet_scale_.push_back(1.0);
     double X = 0.0, x = body.position;
     const int left = new_node(NodeKind::left_end, piece);
     nodes_[left].front_kind = FrontKind::boundary;
@@ -107,6 +109,7 @@ RunResult Tracker::run() {
   front_cap_ =
       static_cast<double>(scene_.bodies.size()) * std::max(kMinFrontsPerBody, kFrontsPerBody / scene_.solver.tolerance);
   weak_ = 0.5 * scene_.solver.tolerance / std::max(1, places);
+  piece_cap_ = std::max(kMinPiecesPerBody, kPiecesPerBody / tolerance);
   totals(0.0, result_.conservation.energy_initial, result_.conservation.momentum_initial);
 
   // Contacts present at t = 0: walls at a body's end, bodies touching each other.
@@ -210,6 +213,8 @@ RunResult Tracker::run() {
   c.wall_impulse = impulse_;
   c.wall_work = wall_work_;
   c.energy_dissipated = dissipated_;
+  c.energy_droplets = droplet_energy_;
+  c.momentum_droplets = droplet_momentum_;
 
   // Bodies at t_end, pieces named name.1, name.2, ... left to right.
   for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {

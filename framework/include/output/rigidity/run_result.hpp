@@ -38,6 +38,9 @@ struct Conservation {
   double energy_initial = 0.0, energy_final = 0.0, energy_dissipated = 0.0;
   double momentum_initial = 0.0, momentum_final = 0.0, wall_impulse = 0.0;
   double wall_work = 0.0;  ///< energy given by walls and pistons (zero for fixed walls)
+  /// What the front tracker's droplet model changed (a sliver of a body that carries no
+  /// tension kept with its piece in the state the rest is released to): part of the balance.
+  double energy_droplets = 0.0, momentum_droplets = 0.0;
 };
 
 struct RunStats {
