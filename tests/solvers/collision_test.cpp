@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "error_bound.hpp"
 #include "exact/flyer_plate.hpp"
 #include "exact/profile.hpp"
 #include "exact/riemann.hpp"
@@ -111,13 +112,6 @@ TEST(Collision, FlyerPlateSpallsInTheRigidFluidButNotInTheRigidSolid) {
     EXPECT_NEAR(c.energy_final, c.energy_initial, 1e-12 * c.energy_initial);
     EXPECT_EQ(c.energy_dissipated, 0.0);
   }
-}
-
-double solver_number(const RunResult& r, const std::string& key) {
-  for (const auto& [name, value] : r.solver_numbers)
-    if (name == key) return value;
-  ADD_FAILURE() << "no solver number " << key;
-  return 0.0;
 }
 
 std::string cradle(double tolerance) {

@@ -171,8 +171,8 @@ int Tracker::droplet_side(int piece, double X, double t) const {
 /// knock pieces off like a Newton's cradle) would ring and collide at a cost without bound.
 /// What it changes is booked: the droplet's length times |δφ| + |δΨ| of each of its regions.
 /// `before` is the node left of the crack, `straddling` the droplet's region at the crack.
-void Tracker::absorb_droplet(int piece, int side, int before, double X, const Region& straddling, const State& kept,
-                             double t) {
+void Tracker::absorb_droplet(int piece, int side, int before, double X, double x, const Region& straddling,
+                             const State& kept, double t) {
   const Material& m = *straddling.material;
   const double psi_kept = memo_->psi(m, kept.stretch);
   const double energy_kept = energy_density(m, kept), momentum_kept = momentum_density(m, kept);
@@ -206,7 +206,28 @@ void Tracker::absorb_droplet(int piece, int side, int before, double X, const Re
   } else {
     link(before, stop);
   }
+  // The end moves to where the droplet's new state puts it, so that lab lengths stay the
+  // labels' lengths times s/γ (droplet_side checked that there is room).
+  const int end = side < 0 ? pieces_[piece].left_end : pieces_[piece].right_end;
+  reanchor(end, t);
+  nodes_[end].x0 = x + side * droplet_lab_length(end, X, kept, t);
   ++droplets_;
+}
+
+double Tracker::droplet_lab_length(int end, double X, const State& state, double t) const {
+  return std::abs(nodes_[end].X_at(t) - X) * state.stretch.value() / std::cosh(state.rapidity);
+}
+
+/// Whether the end of a piece may move to lab position x at time t without reaching past
+/// its neighbour (the next piece in lab order, or the wall).
+bool Tracker::room_for_end(int piece, int side, double x, double t) const {
+  const auto it = std::find(order_.begin(), order_.end(), piece);
+  if (side < 0) {
+    if (it != order_.begin()) return x >= nodes_[pieces_[*(it - 1)].right_end].x_at(t);
+    return !walls_[0].present || x >= walls_[0].x_at(t);
+  }
+  if (it + 1 != order_.end()) return x <= nodes_[pieces_[*(it + 1)].left_end].x_at(t);
+  return !walls_[1].present || x <= walls_[1].x_at(t);
 }
 
 void Tracker::set_attach(int end, Attach attach, int partner, double t) {

@@ -461,7 +461,12 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     droplet = droplet_side(left_piece, XL, t);
     if (droplet != 0) {
       const State& kept = droplet < 0 ? sol.right : sol.left;  // the rest's released state
-      absorb_droplet(left_piece, droplet, before, XL, droplet < 0 ? left_region : right_region, kept, t);
+      const int end = droplet < 0 ? pieces_[left_piece].left_end : pieces_[left_piece].right_end;
+      if (!room_for_end(left_piece, droplet, x + droplet * droplet_lab_length(end, XL, kept, t), t)) droplet = 0;
+    }
+    if (droplet != 0) {
+      const State& kept = droplet < 0 ? sol.right : sol.left;
+      absorb_droplet(left_piece, droplet, before, XL, x, droplet < 0 ? left_region : right_region, kept, t);
       (droplet < 0 ? sol.left : sol.right) = kept;
       sol.parted = false;
     }

@@ -231,7 +231,10 @@ class Tracker {
   void split_piece(int left_node, int right_node, const State& left_state, const State& right_state,
                    const Region& left_region, const Region& right_region, double t, double X, double x);
   int droplet_side(int piece, double X, double t) const;
-  void absorb_droplet(int piece, int side, int before, double X, const Region& straddling, const State& kept, double t);
+  void absorb_droplet(int piece, int side, int before, double X, double x, const Region& straddling, const State& kept,
+                      double t);
+  double droplet_lab_length(int end, double X, const State& state, double t) const;
+  bool room_for_end(int piece, int side, double x, double t) const;
   void set_attach(int end, Attach attach, int partner, double t);
   void flush_wall(int side, double t);
   // ---- outputs --------------------------------------------------------------------------
