@@ -223,6 +223,21 @@ TEST_F(CliTest, ASetThatShortensTheRunDropsLaterSnapshotTimesWithANote) {
   EXPECT_TRUE(contains(late.err, "late.yaml:5:32: error: key 'outputs.snapshots.0.times.0'")) << late.err;
 }
 
+TEST_F(CliTest, ASetOfTheEndRunsScenesWithoutSnapshotsOrOutputs) {
+  // Nothing to clip: a scene with no outputs, and one with probes only, run to the new end.
+  write_file("bare.yaml",
+             "name: bare\nmaterials: {m: {model: rigid}}\n"
+             "bodies: [{name: b, material: m, length: 1, velocity: 0.6}]\n"
+             "boundaries: {right: {type: wall, position: 0.8}}\ntime: {end: 1.5}\n");
+  const CliOutcome bare = rigidity("run bare.yaml --set time.end=3 --out bare");
+  ASSERT_EQ(bare.exit_status, 0) << bare.err;
+  EXPECT_TRUE(contains(read_text(dir() / "bare" / "resolved_scene.yaml"), "end: 3")) << bare.out;
+  write_file("probed.yaml", read_text(dir() / "bare.yaml") +
+                                "outputs: {probes: [{name: w, body: b, at: right, quantities: [p], every: 0.5}]}\n");
+  const CliOutcome probed = rigidity("run probed.yaml --set time.end=1 --out probed");
+  ASSERT_EQ(probed.exit_status, 0) << probed.err;
+}
+
 TEST_F(CliTest, TheDefaultToleranceRunsAGenuinelyNonlinearBarClean) {
   // The paper's scene with a constant_sound_speed bar: a shock, then a fan from the free end.
   // The default tolerance asks for exactness where waves are jumps and the finest fans the

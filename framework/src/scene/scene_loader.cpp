@@ -347,11 +347,13 @@ bool overrides_time_end(const std::vector<std::string>& overrides) {
 /// scene file that itself asks for a time beyond its end stays an error.
 std::vector<std::string> clip_snapshots_to_end(YAML::Node& root) {
   std::vector<std::string> notes;
+  // A key a scene leaves out is an invalid node here, which throws when asked its type.
   const YAML::Node end_node = std::as_const(root)["time"]["end"];
   double end = 0.0;
-  if (!end_node.IsScalar() || !YAML::convert<double>::decode(end_node, end)) return notes;  // the checker says why
+  if (!end_node.IsDefined() || !end_node.IsScalar() || !YAML::convert<double>::decode(end_node, end))
+    return notes;  // the checker says why
   const YAML::Node snapshots = std::as_const(root)["outputs"]["snapshots"];
-  if (!snapshots.IsSequence()) return notes;
+  if (!snapshots.IsDefined() || !snapshots.IsSequence()) return notes;
   YAML::Node kept_snapshots(YAML::NodeType::Sequence);
   for (std::size_t i = 0; i < snapshots.size(); ++i) {
     YAML::Node snapshot = snapshots[i];
@@ -396,8 +398,11 @@ Scene load(std::string_view text, const std::string& source, const std::vector<s
     YAML::Node root = detail::parse_scene_text(text, source);
     for (const std::string& assignment : overrides) sources.apply_override(root, assignment);
     std::vector<std::string> notes;
-    if (overrides_time_end(overrides) && root.IsMap() && std::as_const(root)["outputs"].IsMap() &&
-        std::as_const(root)["time"].IsMap())
+    const auto is_map = [&root](const char* key) {
+      const YAML::Node node = std::as_const(root)[key];
+      return node.IsDefined() && node.IsMap();
+    };
+    if (overrides_time_end(overrides) && root.IsMap() && is_map("outputs") && is_map("time"))
       notes = clip_snapshots_to_end(root);
     load_environment_plugins();  // RIGIDITY_PLUGIN_PATH, before the schema lists the registered models
     schema::Key schema = schema::scene_schema();
