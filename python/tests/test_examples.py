@@ -1,0 +1,38 @@
+"""The examples of examples/python, run on a few points: what they plot must be the physics."""
+
+import math
+import os
+import sys
+
+import pytest
+
+import rigidity
+
+sys.path.insert(0, os.path.join(os.environ.get("RIGIDITY_SOURCE_DIR", "."), "examples", "python"))
+import wall_impact  # noqa: E402
+
+
+@pytest.mark.parametrize("V,v", [(1.0, 0.2), (1.0, 0.9), (0.5, 0.2), (0.9, 0.6), (0.3, 0.25)])
+def test_wall_impact_runs_match_the_closed_forms(V, v):
+    model, parameters = ("rigid", {}) if V == 1.0 else ("hooke", {"wave_speed": V})
+    p, contact, rebound = wall_impact.impact(model, v, **parameters)
+    p_exact, contact_exact, rebound_exact = wall_impact.closed_form(V, v)
+    assert p == pytest.approx(p_exact, rel=1e-10)
+    assert contact == pytest.approx(contact_exact, rel=1e-10)
+    assert rebound == pytest.approx(rebound_exact, rel=1e-10)
+
+
+def test_the_closed_form_is_the_papers_for_the_rigid_bar():
+    # SPEC §2: v = 0.6 -> s = 1/2, p = 3/2, contact 2 s = 1; hooke V = 0.5 at 0.2 -> p = 1/9.
+    assert wall_impact.closed_form(1.0, 0.6) == pytest.approx((1.5, 1.0, -0.6), rel=1e-12)
+    assert wall_impact.closed_form(0.5, 0.2)[0] == pytest.approx(1.0 / 9.0, rel=1e-9)
+
+
+def test_a_hooke_bar_hit_at_its_wave_speed_is_refused():
+    with pytest.raises(rigidity.InadmissibleError):
+        wall_impact.impact("hooke", 0.55, wave_speed=0.5)
+
+
+def test_the_fluid_rebounds_slower_than_it_came():
+    _, _, rebound = wall_impact.impact("constant_sound_speed", 0.5, sound_speed=0.5)
+    assert -0.5 < rebound < -0.3 and math.isfinite(rebound)
