@@ -728,12 +728,16 @@ void require_solved(const RiemannSolution& sol, const Material& material, double
   const StretchRange range = m.admissible();
   const bool demanded_known = std::isfinite(sol.demanded_psi);
   std::string what = "no classical solution " + where + ": ";
+  // A material declared on a finite range (a fit valid between two stretches) is not crushed
+  // when a state would leave it: the state leaves the range the law was given on.
+  const std::string declared = "s in [" + shortest(std::exp(range.log_min)) + ", " +
+                               (std::isfinite(range.log_max) ? shortest(std::exp(range.log_max)) : "inf") + "]";
   if (!sol.in_tension) {
-    what +=
-        "an impact at relative speed " + shortest(std::tanh(sol.impact_rapidity)) + " c would crush the material '" +
-        model + "' " +
-        (std::isfinite(range.log_min) ? "below its smallest admissible stretch s = " + shortest(std::exp(range.log_min))
-                                      : std::string("to zero length"));
+    what += "an impact at relative speed " + shortest(std::tanh(sol.impact_rapidity)) + " c would " +
+            (std::isfinite(range.log_min)
+                 ? "take the material '" + model + "' out of the range its law is declared on, " + declared +
+                       ": below its smallest admissible stretch s = " + shortest(std::exp(range.log_min))
+                 : "crush the material '" + model + "' to zero length");
     if (demanded_known) {
       what += ": it would need Psi = " + shortest(sol.demanded_psi) +
               " (tanh Psi = " + shortest(std::tanh(sol.demanded_psi)) + " c), at or beyond";
@@ -744,11 +748,11 @@ void require_solved(const RiemannSolution& sol, const Material& material, double
             " (tanh Psi_max = " + shortest(std::tanh(sol.limit_psi)) +
             " c, the largest impact speed an unstrained bar of it takes against a wall)";
   } else {
-    what +=
-        "sides separating at relative speed " + shortest(std::abs(std::tanh(sol.impact_rapidity))) +
-        " c would pull the material '" + model + "' " +
-        (std::isfinite(range.log_max) ? "beyond its largest admissible stretch s = " + shortest(std::exp(range.log_max))
-                                      : std::string("to infinite length"));
+    what += "sides separating at relative speed " + shortest(std::abs(std::tanh(sol.impact_rapidity))) + " c would " +
+            (std::isfinite(range.log_max)
+                 ? "take the material '" + model + "' out of the range its law is declared on, " + declared +
+                       ": beyond its largest admissible stretch s = " + shortest(std::exp(range.log_max))
+                 : "pull the material '" + model + "' to infinite length");
     if (demanded_known)
       what += ": it would need Psi = " + shortest(sol.demanded_psi) + ", at or beyond";
     else

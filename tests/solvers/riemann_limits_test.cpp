@@ -162,6 +162,9 @@ TEST(RiemannLimits, AMaterialWithAFiniteRangeLeavesItAtItsEnds) {
   EXPECT_TRUE(std::isnan(crushed.demanded_psi));
   std::string message = inadmissible_message(crushed, m, 0.0, 0.0);
   EXPECT_NE(message.find("below its smallest admissible stretch s = 0.5"), std::string::npos) << message;
+  // Not crushed: it left the range its law was declared on, and the message gives that range.
+  EXPECT_EQ(message.find("crush"), std::string::npos) << message;
+  EXPECT_NE(message.find("out of the range its law is declared on, s in [0.5, 2]"), std::string::npos) << message;
   // A bonded wall receding fast stretches it beyond s = 2, and so do two bonded halves flying apart.
   const RiemannSolution pulled = solve_wall(m, kNatural, Side::left, 1.0, -kInf);
   ASSERT_EQ(pulled.status, Status::out_of_range);
