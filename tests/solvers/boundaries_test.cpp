@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -70,6 +71,52 @@ time: {end: 5.0}
   // After the piston stops at t = 2.5 the bar is held between piston and wall:
   // its end is where the piston is, 0.05·1 + 0.15·1.5 = 0.275.
   EXPECT_NEAR(r.bodies[0].x_left, 0.275, 1e-14);
+}
+
+RunResult ramp(const std::string& interpolation, double tolerance) {
+  // A long rigid bar pushed by a piston whose velocity ramps from 0 at t = 0 to 0.4 at t = 1.
+  char yaml[768];
+  std::snprintf(yaml, sizeof yaml, R"(
+name: ramp
+materials: {m: {model: rigid}}
+bodies: [{name: bar, material: m, length: 10.0, velocity: 0.0}]
+boundaries:
+  left: {type: piston, table: [[0.0, 0.0], [1.0, 0.4]], interpolation: %s}
+solver: {tolerance: %.17g}
+time: {end: 1.0}
+outputs: {probes: [{name: face, body: bar, at: left, quantities: [p, x], every: 0.25}]}
+)",
+                interpolation.c_str(), tolerance);
+  return solve(load_scene_string(yaml, "<test>"));
+}
+
+double probe_value(const RunResult& r, double t, Quantity q) {
+  for (const ProbeSample& s : r.probes)
+    if (std::abs(s.t - t) < 1e-12 && s.quantity == q) return s.value;
+  ADD_FAILURE() << "no sample at t = " << t;
+  return 0.0;
+}
+
+TEST(Piston, ALinearTableRampsTheVelocityBetweenRows) {
+  // Continuous ramp v(t) = 0.4 t: the face of the bar follows the piston, x(t) = 0.2 t², and
+  // carries the simple wave's state, Ψ = φ (J− = 0 from the bar at rest): for the rigid law
+  // s = e^−φ, p = (e^{2φ} − 1)/2 with φ = artanh 0.4 t. Steps of at most the tolerance at
+  // the ramp's mid-step velocity put the face within half a step of it.
+  for (double tolerance : {1e-2, 1e-3}) {  // 43 and 424 steps: under the cap of 1000 per row
+    SCOPED_TRACE(tolerance);
+    const RunResult r = ramp("linear", tolerance);
+    for (double t : {0.25, 0.5, 0.75}) {
+      const double phi = std::atanh(0.4 * t);
+      const double p = 0.5 * std::expm1(2.0 * phi);
+      EXPECT_NEAR(probe_value(r, t, Quantity::p), p, std::exp(2.0 * phi) * tolerance) << t;
+      EXPECT_NEAR(probe_value(r, t, Quantity::x), 0.2 * t * t, 0.2 * tolerance) << t;
+    }
+    EXPECT_NEAR(r.bodies[0].x_left, 0.2, 1e-12);  // midpoint steps integrate a linear ramp exactly
+  }
+  // The default, steps: the first row's velocity, 0, holds until t = 1.
+  const RunResult steps = ramp("step", 1e-2);
+  EXPECT_EQ(probe_value(steps, 0.75, Quantity::p), 0.0);
+  EXPECT_EQ(steps.bodies[0].x_left, 0.0);
 }
 
 TEST(Interface, TwoMaterialsInOneBodyResolveExactlyAndStayBonded) {

@@ -216,8 +216,9 @@ outputs: {snapshots: [{times: [7.0, 20.0], quantities: [x], samples: 4001}]}
   for (std::size_t k = 0; k < r.result.bodies.size(); ++k) {
     const BodyResult& b = r.result.bodies[k];
     EXPECT_LE(b.x_left, b.x_right + roundoff) << b.name << " inside out";
-    if (k + 1 < r.result.bodies.size())
+    if (k + 1 < r.result.bodies.size()) {
       EXPECT_LE(b.x_right, r.result.bodies[k + 1].x_left + roundoff) << b.name << " overlaps the next piece";
+    }
   }
   std::map<std::pair<double, int>, std::vector<double>> x;  // (t, body) -> x over X
   for (const SnapshotSample& s : r.result.snapshots) x[{s.t, s.body}].push_back(s.value);

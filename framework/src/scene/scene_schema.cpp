@@ -211,8 +211,14 @@ Key boundary_key(const std::string& side) {
                              .defaults_to_derived("the adjacent body's end")
                              .only_when("type", held),
                          velocity("velocity", "constant piston velocity").only_when("type", {"piston"}),
-                         Key::list("table", row, "piston velocity history: piecewise constant, t increasing from 0")
+                         Key::list("table", row, "piston velocity history, t increasing from 0")
                              .items(1)
+                             .only_when("type", {"piston"}),
+                         Key::choice("interpolation", {"step", "linear"},
+                                     "table: step (each row's velocity holds until the next row) or linear (the "
+                                     "velocity ramps between rows, run as steps of at most solver.tolerance in "
+                                     "rapidity, at most 1000 per row; the last row's velocity holds)")
+                             .defaults_to(std::string("step"))
                              .only_when("type", {"piston"}),
                      },
                      side + " end of the row of bodies");
