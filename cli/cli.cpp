@@ -77,7 +77,8 @@ constexpr Command kCommands[] = {
      "  --json                 print the list as JSON\n",
      materials_command},
     {"compare",
-     "rigidity compare [--materials a,b] [--out DIR] [--speeds v,...] [--impact-speed v] [--param model.name=x ...]",
+     "rigidity compare [--scene FILE] [--materials a,b] [--out DIR] [--speeds v,...] [--impact-speed v] "
+     "[--param model.name=x ...]",
      "compare the materials: stress-strain laws, sound speeds and wall impacts",
      "For every registered material (or those named by --materials) tabulates the\n"
      "stress-strain law p(s) in compression and traction, the sound speed c_s(s), and the\n"
@@ -103,7 +104,10 @@ constexpr Command kCommands[] = {
      "                         (default 0.01, 0.02, ..., 0.99)\n"
      "  --impact-speed v       the impact speed of materials.csv (default 0.5)\n"
      "  --param model.name=x   a material parameter, e.g. --param hooke.wave_speed=0.3\n"
-     "                         (repeatable)\n",
+     "                         (repeatable)\n"
+     "  --scene FILE           compare the materials FILE declares, under its names and\n"
+     "                         with its parameters (two hooke materials at V = 0.5 and 0.9,\n"
+     "                         say); --materials then picks among those names\n",
      compare_command},
     {"plot", "rigidity plot RUN_DIR [--out DIR]", "draw a run's outputs as PNG images with gnuplot",
      "Reads the outputs `rigidity run` wrote into RUN_DIR and draws, with gnuplot:\n"

@@ -23,6 +23,7 @@
 #include "rigidity/errors.hpp"
 #include "rigidity/json_writer.hpp"
 #include "rigidity/registry.hpp"
+#include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/riemann.hpp"
 #include "rigidity/solvers/wall_impact.hpp"
 #include "rigidity/spelling.hpp"
@@ -194,6 +195,7 @@ void check_overrides(const std::vector<ParameterOverride>& overrides,
 /// A material set up for the comparison.
 struct Candidate {
   const MaterialInfo* info = nullptr;
+  std::string name;  ///< the model, or the scene's name for the material (--scene)
   std::shared_ptr<const Material> material;
   std::string parameters;          ///< "wave_speed=0.5;..." (rest_density has its own column)
   std::vector<std::string> notes;  ///< values chosen where the material declares no default
@@ -215,6 +217,7 @@ std::pair<double, std::string> representative_value(const ParameterSpec& p) {
 Candidate set_up(const MaterialInfo& info, const std::vector<ParameterOverride>& overrides) {
   Candidate c;
   c.info = &info;
+  c.name = info.name;
   ParameterValues values;
   for (const ParameterSpec& spec : info.parameters) {
     const auto given = std::find_if(overrides.begin(), overrides.end(), [&](const ParameterOverride& o) {
@@ -265,6 +268,38 @@ Candidate set_up(const MaterialInfo& info, const std::vector<ParameterOverride>&
   return c;
 }
 
+/// The materials a scene file declares, as it builds them (its parameters, checked as a run
+/// checks them), under the scene's names; --materials picks some of them by those names.
+std::vector<Candidate> scene_candidates(const std::string& path, const Arguments& args) {
+  const Scene scene = load_scene_file(path);  // an invalid scene: InputError, file/line/key
+  std::vector<std::string> wanted;
+  if (const std::optional<std::string> named = args.value("--materials")) wanted = split_list(*named, "--materials");
+  std::vector<std::string> declared;
+  for (const auto& [name, decl] : scene.materials) declared.push_back(name);
+  for (const std::string& name : wanted)
+    if (scene.materials.count(name) == 0) {
+      const std::string near = closest_match(name, declared);
+      throw CommandError(
+          kExitInvalidInput, "--materials: " + path + " declares no material '" + name + "'" +
+                                 (near.empty() ? "" : " (did you mean '" + near + "'?)") + "; it declares:" + [&] {
+                                   std::string list;
+                                   for (const std::string& d : declared) list += " " + d;
+                                   return list;
+                                 }());
+    }
+  std::vector<Candidate> out;
+  for (const auto& [name, decl] : scene.materials) {
+    if (!wanted.empty() && std::find(wanted.begin(), wanted.end(), name) == wanted.end()) continue;
+    Candidate c;
+    c.info = &MaterialRegistry::instance().at(decl.model);
+    c.name = name;
+    c.material = decl.material;
+    c.parameters = "model=" + decl.model + (decl.parameters.empty() ? "" : ";" + decl.parameters);
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
 // ---- the physics --------------------------------------------------------------------------
 
 struct CurvePoint {
@@ -305,7 +340,7 @@ Comparison compare(const Candidate& c, double impact_speed, const std::vector<do
   out.max_tension = m.max_tension();
   out.linearly_degenerate = m.linearly_degenerate();
   const std::optional<CurvePoint> natural = curve_point(m, Stretch::natural());
-  if (!natural) throw NumericalError(c.info->name + ": the natural state s = 1 is not admissible or not finite");
+  if (!natural) throw NumericalError(c.name + ": the natural state s = 1 is not admissible or not finite");
   out.cs_unstrained = natural->cs;
 
   const double step = std::log(kStretchSpan) / kStretchStepsPerSide;
@@ -319,14 +354,14 @@ Comparison compare(const Candidate& c, double impact_speed, const std::vector<do
     }
   }
   if (skipped > 0)
-    out.warnings.push_back(c.info->name + ": " + std::to_string(skipped) +
+    out.warnings.push_back(c.name + ": " + std::to_string(skipped) +
                            " admissible stretches of the grid left out: p, e or c_s failed there");
 
   const auto impact_at = [&](double v) -> std::optional<Impact> {
     const ImpactOutcome outcome = wall_impact(m, v);
     if (outcome.status == Status::ok) return outcome.impact;
     if (outcome.status != Status::out_of_range)
-      out.warnings.push_back(c.info->name + ": wall impact at v = " + exact(v) + " left out: the Riemann solver " +
+      out.warnings.push_back(c.name + ": wall impact at v = " + exact(v) + " left out: the Riemann solver " +
                              "reported '" + std::string(to_string(outcome.status)) + "'");
     return std::nullopt;
   };
@@ -355,7 +390,7 @@ std::string materials_csv(const std::vector<Comparison>& rows, double impact_spe
       "impact_v,impact_s,impact_p,impact_front_speed,crush_speed\n";
   for (const Comparison& r : rows) {
     const Candidate& c = *r.candidate;
-    out += csv_field(c.info->name) + "," + csv_field(c.parameters) + "," + exact(c.material->rest_density()) + "," +
+    out += csv_field(c.name) + "," + csv_field(c.parameters) + "," + exact(c.material->rest_density()) + "," +
            exact(r.cs_unstrained) + "," + exact(r.max_pressure) + "," + exact(r.max_tension) + "," +
            (r.linearly_degenerate ? "true" : "false") + "," + exact(impact_speed) + ",";
     out += r.impact ? exact(r.impact->s) + "," + exact(r.impact->p) + "," + exact(r.impact->front_speed)
@@ -369,8 +404,8 @@ std::string stress_strain_csv(const std::vector<Comparison>& rows) {
   std::string out = "material,s,p,e,cs\n";
   for (const Comparison& r : rows)
     for (const CurvePoint& q : r.curve)
-      out += csv_field(r.candidate->info->name) + "," + exact(q.s) + "," + exact(q.p) + "," + exact(q.e) + "," +
-             exact(q.cs) + "\n";
+      out += csv_field(r.candidate->name) + "," + exact(q.s) + "," + exact(q.p) + "," + exact(q.e) + "," + exact(q.cs) +
+             "\n";
   return out;
 }
 
@@ -378,7 +413,7 @@ std::string impact_csv(const std::vector<Comparison>& rows) {
   std::string out = "material,v,s,p,front_speed\n";
   for (const Comparison& r : rows)
     for (const Impact& i : r.impacts)
-      out += csv_field(r.candidate->info->name) + "," + exact(i.v) + "," + exact(i.s) + "," + exact(i.p) + "," +
+      out += csv_field(r.candidate->name) + "," + exact(i.v) + "," + exact(i.s) + "," + exact(i.p) + "," +
              exact(i.front_speed) + "\n";
   return out;
 }
@@ -390,7 +425,7 @@ std::string colour(std::size_t i) { return std::string(kColours[i % std::size(kC
 /// The key entry of a material: its name and parameters.
 std::string legend(const Comparison& r) {
   const Candidate& c = *r.candidate;
-  return c.parameters.empty() ? c.info->name : c.info->name + " (" + c.parameters + ")";
+  return c.parameters.empty() ? c.name : c.name + " (" + c.parameters + ")";
 }
 
 std::string chart_header(std::string_view what, std::string_view name, int width, int height) {
@@ -433,7 +468,7 @@ std::string plot_lines(const std::vector<std::string>& elements) {
 /// compression) both show.
 std::string material_curve(const std::string& file, const Comparison& r, std::size_t i, int x_column, int y_column) {
   return gnuplot_quote(file) + " skip 1 using " + std::to_string(x_column) + ":(strcol(1) eq " +
-         gnuplot_quote(r.candidate->info->name) + " ? $" + std::to_string(y_column) + " : NaN) with lines lw 2 dt " +
+         gnuplot_quote(r.candidate->name) + " ? $" + std::to_string(y_column) + " : NaN) with lines lw 2 dt " +
          (i % 2 == 0 ? "1" : "(10,6)") + " lc rgb '" + colour(i) + "' title " + gnuplot_quote(legend(r));
 }
 
@@ -465,7 +500,7 @@ std::string stress_strain_chart(const std::vector<Comparison>& rows) {
   std::vector<std::string> elements;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Comparison& r = rows[i];
-    const std::string& name = r.candidate->info->name;
+    const std::string& name = r.candidate->name;
     if (std::isfinite(r.max_pressure) && r.max_pressure <= y_max)
       out += limit_line(r.max_pressure, colour(i), name + ": maximum pressure " + readable(r.max_pressure), false);
     if (std::isfinite(r.max_tension) && r.max_tension >= y_min)
@@ -509,9 +544,8 @@ std::string impact_chart(const std::vector<Comparison>& rows) {
   std::string crush_lines;
   for (std::size_t i = 0; i < rows.size(); ++i)
     if (rows[i].crush_speed)
-      crush_lines +=
-          limit_line_vertical(*rows[i].crush_speed, colour(i),
-                              rows[i].candidate->info->name + " crushed at v = " + readable(*rows[i].crush_speed));
+      crush_lines += limit_line_vertical(*rows[i].crush_speed, colour(i),
+                                         rows[i].candidate->name + " crushed at v = " + readable(*rows[i].crush_speed));
 
   std::vector<std::string> pressure, stretch, front;
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -526,7 +560,7 @@ std::string impact_chart(const std::vector<Comparison>& rows) {
   for (std::size_t i = 0; i < rows.size(); ++i)
     if (std::isfinite(rows[i].max_pressure))
       out += limit_line(rows[i].max_pressure, colour(i),
-                        rows[i].candidate->info->name + ": maximum pressure " + readable(rows[i].max_pressure), true);
+                        rows[i].candidate->name + ": maximum pressure " + readable(rows[i].max_pressure), true);
   out += plot_lines(pressure);
   out += "unset logscale y\nunset label\nunset arrow\nunset key\n";
   out += "set title 'Stretch behind the front'\nset ylabel 's'\nset yrange [0:1.05]\n" + crush_lines;
@@ -552,7 +586,7 @@ void print_summary(std::ostream& out, const std::vector<Comparison>& rows, doubl
   out << "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Comparison& r : rows) {
     const Candidate& c = *r.candidate;
-    out << "| " << c.info->name << " | " << (c.parameters.empty() ? "-" : c.parameters) << " | "
+    out << "| " << c.name << " | " << (c.parameters.empty() ? "-" : c.parameters) << " | "
         << readable(c.material->rest_density()) << " | " << readable(r.cs_unstrained) << " | "
         << readable(r.max_pressure) << " | " << readable(r.max_tension) << " | "
         << (r.linearly_degenerate ? "yes" : "no") << " | ";
@@ -575,8 +609,8 @@ void print_summary(std::ostream& out, const std::vector<Comparison>& rows, doubl
 }  // namespace
 
 int compare_command(std::span<const std::string> args, std::ostream& out) {
-  static constexpr OptionSpec kOptions[] = {
-      {"--materials", true}, {"--out", true}, {"--speeds", true}, {"--impact-speed", true}, {"--param", true, true}};
+  static constexpr OptionSpec kOptions[] = {{"--materials", true},    {"--out", true},         {"--speeds", true},
+                                            {"--impact-speed", true}, {"--param", true, true}, {"--scene", true}};
   const Arguments parsed = parse_arguments("compare", args, kOptions);
   if (parsed.help) {
     out << help("compare");
@@ -587,7 +621,11 @@ int compare_command(std::span<const std::string> args, std::ostream& out) {
 
   // Everything on the command line is checked before anything is computed or written.
   const bool named = parsed.has("--materials");
-  const std::vector<const MaterialInfo*> selected = selected_materials(parsed);
+  const std::optional<std::string> scene_file = parsed.value("--scene");
+  if (scene_file && parsed.has("--param"))
+    throw usage_error("compare", "--param and --scene exclude each other: the scene file gives the parameters");
+  const std::vector<const MaterialInfo*> selected =
+      scene_file ? std::vector<const MaterialInfo*>{} : selected_materials(parsed);
   const double impact_v = parsed.has("--impact-speed") ? impact_speed(*parsed.value("--impact-speed"), "--impact-speed")
                                                        : kDefaultImpactSpeed;
   const std::vector<double> speeds = impact_speeds(parsed);
@@ -602,6 +640,7 @@ int compare_command(std::span<const std::string> args, std::ostream& out) {
     notes.push_back(warning);
     std::cerr << "warning: " << warning << "\n";
   };
+  if (scene_file) candidates = scene_candidates(*scene_file, parsed);
   for (const MaterialInfo* info : selected) {
     try {
       candidates.push_back(set_up(*info, overrides));

@@ -353,6 +353,48 @@ TEST_F(CliTest, CompareChecksParametersAndSpeeds) {
   EXPECT_FALSE(contains(r.out, "required, no default"));              // given, not chosen
 }
 
+TEST_F(CliTest, CompareTakesTheNamedMaterialsOfASceneFile) {
+  // Two parameter sets of one model, under the scene's names. A Hooke front runs at V into
+  // the bar: behind it s* = γ (V − v)/V (SPEC §2 with the paper's argument of §3).
+  write_file("two_hookes.yaml",
+             "name: two_hookes\n"
+             "materials:\n"
+             "  soft: {model: hooke, wave_speed: 0.5}\n"
+             "  stiff: {model: hooke, wave_speed: 0.9, rest_density: 2}\n"
+             "bodies: [{name: a, material: soft, length: 1}, {name: b, material: stiff, position: 1, length: 1}]\n"
+             "time: {end: 1}\n");
+  CliOutcome r = rigidity("compare --scene two_hookes.yaml --speeds 0.3 --out cmp");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const Csv materials = read_csv(dir() / "cmp" / "materials.csv");
+  ASSERT_EQ(materials.rows.size(), 2u);
+  EXPECT_EQ(materials.rows[0].at("material"), "soft");
+  EXPECT_EQ(materials.rows[0].at("parameters"), "model=hooke;wave_speed=0.5");
+  EXPECT_EQ(materials.rows[1].at("material"), "stiff");
+  EXPECT_EQ(materials.rows[1].at("parameters"), "model=hooke;wave_speed=0.9");
+  EXPECT_NEAR(number(materials.rows[1], "crush_speed"), 0.9, 1e-12);
+  const Csv impact = read_csv(dir() / "cmp" / "impact.csv");
+  ASSERT_EQ(impact.rows.size(), 2u);
+  const double gamma = 1.0 / std::sqrt(1.0 - 0.09);
+  for (const auto& row : impact.rows) {
+    const double V = row.at("material") == "soft" ? 0.5 : 0.9;
+    EXPECT_NEAR(number(row, "s"), gamma * (V - 0.3) / V, 1e-12) << row.at("material");
+  }
+  // --materials picks among the scene's names; a name it does not declare, or --param
+  // beside --scene, is invalid input.
+  r = rigidity("compare --scene two_hookes.yaml --materials stiff --out cmp2");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_EQ(read_csv(dir() / "cmp2" / "materials.csv").rows.size(), 1u);
+  r = rigidity("compare --scene two_hookes.yaml --materials stif --out cmp3");
+  EXPECT_EQ(r.exit_status, 2);
+  EXPECT_TRUE(contains(r.err, "did you mean 'stiff'")) << r.err;
+  EXPECT_EQ(rigidity("compare --scene two_hookes.yaml --param hooke.wave_speed=0.3 --out cmp3").exit_status, 2);
+  write_file("broken.yaml", "name: broken\nmaterials: {m: {model: hooke}}\n");
+  r = rigidity("compare --scene broken.yaml --out cmp3");
+  EXPECT_EQ(r.exit_status, 2);
+  EXPECT_TRUE(contains(r.err, "broken.yaml:")) << r.err;
+  EXPECT_FALSE(fs::exists(dir() / "cmp3"));
+}
+
 TEST_F(CliTest, CompareHasHelp) {
   const CliOutcome r = rigidity("compare --help");
   EXPECT_EQ(r.exit_status, 0);

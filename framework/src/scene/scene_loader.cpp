@@ -19,6 +19,7 @@
 #include <system_error>
 
 #include "rigidity/default_scene.hpp"
+#include "rigidity/number_text.hpp"
 #include "rigidity/plugins.hpp"
 #include "rigidity/registry.hpp"
 #include "rigidity/scene_schema.hpp"
@@ -86,6 +87,7 @@ class SceneBuilder {
       const MaterialInfo& info = MaterialRegistry::instance().at(model);  // the schema admits registered models only
       ParameterValues values;
       values.set_directory(directory_.string());  // a relative file name (a table) is the scene's
+      std::string text;
       for (const ParameterSpec& spec : info.parameters) {
         const Checked* value = entry.find(spec.name);
         if (value == nullptr) continue;  // optional and without default: the material decides
@@ -93,6 +95,9 @@ class SceneBuilder {
           values.set(spec.name, value->number);
         else
           values.set(spec.name, value->word);
+        if (spec.name != "rest_density")
+          text += (text.empty() ? "" : ";") + spec.name + "=" +
+                  (spec.type == ParameterType::number ? shortest(value->number) : value->word);
       }
       std::shared_ptr<const Material> material;
       try {
@@ -100,7 +105,7 @@ class SceneBuilder {
       } catch (const std::invalid_argument& e) {
         checker_.fail(entry, "material '" + entry.name + "' (" + model + "): " + e.what());
       }
-      scene.materials.emplace(entry.name, MaterialDecl{entry.name, model, std::move(material), where(entry)});
+      scene.materials.emplace(entry.name, MaterialDecl{entry.name, model, std::move(material), where(entry), text});
       material_names_.insert(entry.name);
     }
   }

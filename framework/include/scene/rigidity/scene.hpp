@@ -21,6 +21,7 @@ struct MaterialDecl {
   std::string model;  ///< registry name ("rigid")
   std::shared_ptr<const Material> material;
   SourceLocation where;
+  std::string parameters;  ///< "wave_speed=0.5;..." as given, natural units (rest_density left out)
 };
 
 /// A piece of a body with uniform initial state.
