@@ -44,6 +44,16 @@ foreach(path ${prefix}/bin/rigidity ${prefix}/include/rigidity/plugins.hpp ${pre
   endif()
 endforeach()
 
+# The example scenes, with the tables they read, run from the prefix.
+run(${prefix}/bin/rigidity run ${prefix}/share/rigidity/configs/tabulated_wall_impact.yaml --out ${WORK_DIR}/shared
+    --quiet)
+foreach(path ${prefix}/share/rigidity/configs/paper_wall_impact.yaml ${prefix}/share/rigidity/sweeps/paper_velocity.yaml
+             ${WORK_DIR}/shared/summary.json)
+  if(NOT EXISTS "${path}")
+    message(FATAL_ERROR "not installed or not run: ${path}")
+  endif()
+endforeach()
+
 # 2. The example plugin, built against the prefix only.
 file(COPY ${SOURCE_DIR}/examples/plugin/ DESTINATION ${example} PATTERN build EXCLUDE)
 set(configure ${CMAKE_COMMAND} -S ${example} -B ${example}/build -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release)
