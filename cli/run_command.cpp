@@ -421,7 +421,7 @@ int run_command(std::span<const std::string> args, std::ostream& out) {
   if (!quiet)
     for (const std::string& note : scene.notes) std::cerr << "note: " << note << "\n";
   if (parsed.has("--print-scene")) {
-    out << scene.resolved_yaml;  // the scene as it would run, every default filled in; nothing is run
+    out << scene.resolved_yaml();  // the scene as it would run, every default filled in; nothing is run
     return kExitOk;
   }
   const std::string dir =

@@ -115,7 +115,7 @@ class StreamingFiles : public ::testing::Test {
     s.bodies.push_back(bar);
     s.t_end = 1.0;
     s.outputs.probes.push_back(ProbeDecl{"mid", "bar", 0.5, {Quantity::p}, 1e-6, {}});
-    s.resolved_yaml = "name: streamed\n";
+    s.resolver = [] { return std::string("name: streamed\n"); };
     return s;
   }
   /// The one entry of base_ whose name starts with `prefix`, or "".

@@ -41,7 +41,7 @@ Scene wall_impact_scene(UnitSystem units = UnitSystem::natural) {
   scene.outputs.probes.push_back(ProbeDecl{"wall", "bar", 1.0, {Quantity::p, Quantity::v, Quantity::s}, 0.5, {}});
   scene.outputs.snapshots.push_back(SnapshotDecl{{0.5}, {Quantity::x, Quantity::p}, 3, {}, {}});
   scene.outputs.fronts = true;
-  scene.resolved_yaml = "name: wall_impact\n# every default filled in: \"verbatim\"\n";
+  scene.resolver = [] { return std::string("name: wall_impact\n# every default filled in: \"verbatim\"\n"); };
   return scene;
 }
 
@@ -113,7 +113,7 @@ TEST_F(WriteRun, WritesEveryFileTheSceneAsksFor) {
   EXPECT_EQ(entries(dir), (std::vector<std::string>{"events.csv", "fronts.csv", "probes.csv", "resolved_scene.yaml",
                                                     "snapshots.csv", "summary.json"}));
   EXPECT_EQ(entries(base_), std::vector<std::string>{"run"});  // no temporary left beside it
-  EXPECT_EQ(read_file(dir / "resolved_scene.yaml"), wall_impact_scene().resolved_yaml);
+  EXPECT_EQ(read_file(dir / "resolved_scene.yaml"), wall_impact_scene().resolved_yaml());
   EXPECT_EQ(read_file(dir / "summary.json"), summary_json(wall_impact_scene(), wall_impact_result()));
 }
 

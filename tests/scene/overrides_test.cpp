@@ -23,7 +23,7 @@ TEST(Overrides, ReplaceValues) {
   EXPECT_FALSE(scene.outputs.fronts);
   EXPECT_EQ(scene.solver.method, SolverMethod::finite_volume);
   EXPECT_EQ(scene.t_end, 3.0);
-  EXPECT_NE(scene.resolved_yaml.find("velocity: 0.8"), std::string::npos);
+  EXPECT_NE(scene.resolved_yaml().find("velocity: 0.8"), std::string::npos);
 }
 
 TEST(Overrides, AddKeysAndMaps) {

@@ -93,14 +93,14 @@ inline void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(p.bodies, q.bodies);
   }
   EXPECT_EQ(a.outputs.fronts, b.outputs.fronts);
-  EXPECT_EQ(a.resolved_yaml, b.resolved_yaml);
+  EXPECT_EQ(a.resolved_yaml(), b.resolved_yaml());
 }
 
 /// Loads `text`, reloads its resolved_yaml, and expects the same scene both times.
 inline void expect_round_trip(const std::string& text) {
   const Scene first = load_ok(text);
-  SCOPED_TRACE("resolved:\n" + first.resolved_yaml);
-  const Scene second = load_ok(first.resolved_yaml);
+  SCOPED_TRACE("resolved:\n" + first.resolved_yaml());
+  const Scene second = load_ok(first.resolved_yaml());
   expect_same_scene(first, second);
 }
 

@@ -470,7 +470,7 @@ void StreamingRecorder::commit(const RunResult& result) {
     if (*file) (*file)->close();
   const fs::path& tmp = f.temporary.path();
   write_text_file(tmp / "summary.json", summary);
-  write_text_file(tmp / "resolved_scene.yaml", f.scene.resolved_yaml);
+  write_text_file(tmp / "resolved_scene.yaml", f.scene.resolved_yaml());
   filesystem_step("cannot move the outputs into place", [&] { f.temporary.commit(f.target); });
   f.parents.keep();
 }

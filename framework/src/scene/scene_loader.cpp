@@ -441,7 +441,9 @@ Scene load(std::string_view text, const std::string& source, const std::vector<s
     Checker checker(sources, units);
     Checked checked = checker.check(root, schema, {}, root.Mark());
     Scene scene = SceneBuilder(checker, sources, units, directory).build(checked);
-    scene.resolved_yaml = detail::emit_resolved(checked, units);
+    scene.resolver = [tree = std::make_shared<const Checked>(std::move(checked)), units] {
+      return detail::emit_resolved(*tree, units);
+    };
     scene.notes = std::move(notes);
     return scene;
   } catch (const YAML::Exception& e) {

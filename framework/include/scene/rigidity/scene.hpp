@@ -3,6 +3,7 @@
 /// Produced only by the scene loader, which has checked every rule; solvers may
 /// rely on it (bodies ordered left to right and not overlapping, |v| < 1, s admissible).
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -108,8 +109,13 @@ struct Scene {
   SolverDecl solver;
   double t_end = 1.0;
   OutputsDecl outputs;
-  std::string resolved_yaml;       ///< the scene as run, every default filled in, in the scene's units
   std::vector<std::string> notes;  ///< what the loader changed for an override (outputs beyond a shorter end)
+  /// Writes resolved_yaml(): set by the loader, which keeps the checked tree for it.
+  std::function<std::string()> resolver;
+
+  /// The scene as run, every default filled in, in the scene's units, as YAML text. Made
+  /// when asked (a run that writes no files, in a sweep or from Python, never asks).
+  [[nodiscard]] std::string resolved_yaml() const { return resolver ? resolver() : std::string(); }
 
   [[nodiscard]] const Material& material_of(const Segment& seg) const { return *materials.at(seg.material).material; }
 };
