@@ -647,7 +647,7 @@ std::string Scheme::where_is_cell(int c) const {
 }
 
 void Scheme::check(const RiemannSolution& sol, const Material& m, double t, double x) const {
-  require_solved(sol, m, t, x);
+  require_solved(sol, m, t, x, scene_.units);
 }
 
 // =====================================================================================

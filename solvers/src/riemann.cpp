@@ -697,7 +697,13 @@ double energy_density(const Material& m, const State& st) {
 
 bool representable(Stretch s) { return std::abs(s.log()) < kRepresentableLogStretch; }
 
-void require_solved(const RiemannSolution& sol, const Material& material, double t, double x) {
+void require_solved(const RiemannSolution& sol, const Material& material, double t, double x, UnitSystem units) {
+  // Every number in the scene's units, with its unit; speeds of an SI scene also as fractions of c.
+  const auto in_units = [units](double value, Dimension d) {
+    std::string text = shortest(from_natural(value, d, units)) + " " + std::string(unit_symbol(d, units));
+    if (d == Dimension::velocity && units == UnitSystem::si) text += " (" + shortest(value) + " c)";
+    return text;
+  };
   if (sol.status == Status::ok) {
     // A solution whose stretch or pressure double precision cannot carry (an impact at a
     // Lorentz factor of 1e40 compresses a soft gas to s = 1e-400) is a limit of the
@@ -708,15 +714,16 @@ void require_solved(const RiemannSolution& sol, const Material& material, double
     const Material& m = sol.material != nullptr ? *sol.material : material;
     const Stretch extreme =
         std::abs(sol.left.stretch.log()) > std::abs(sol.right.stretch.log()) ? sol.left.stretch : sol.right.stretch;
-    throw InadmissibleError("no state double precision can carry at t = " + shortest(t) + ", x = " + shortest(x) +
-                            ": material '" + std::string(m.model()) + "' would reach s = exp(" +
-                            shortest(extreme.log()) + ") and p = " + shortest(sol.pressure) +
+    throw InadmissibleError("no state double precision can carry at t = " + in_units(t, Dimension::time) +
+                            ", x = " + in_units(x, Dimension::length) + ": material '" + std::string(m.model()) +
+                            "' would reach s = exp(" + shortest(extreme.log()) +
+                            ") and p = " + in_units(sol.pressure, Dimension::pressure) +
                             " (double precision carries s in [1e-300, 1e300] and |p| below 1e300); the bodies "
                             "meet too fast for this material: lower their Lorentz factors");
   }
   const Material& m = sol.material != nullptr ? *sol.material : material;
   const std::string model(m.model());
-  const std::string where = "at t = " + shortest(t) + ", x = " + shortest(x);
+  const std::string where = "at t = " + in_units(t, Dimension::time) + ", x = " + in_units(x, Dimension::length);
   if (sol.status != Status::out_of_range) {
     std::string what =
         "the Riemann problem " + where + " could not be solved (" + std::string(to_string(sol.status)) + ")";
@@ -733,22 +740,23 @@ void require_solved(const RiemannSolution& sol, const Material& material, double
   const std::string declared = "s in [" + shortest(std::exp(range.log_min)) + ", " +
                                (std::isfinite(range.log_max) ? shortest(std::exp(range.log_max)) : "inf") + "]";
   if (!sol.in_tension) {
-    what += "an impact at relative speed " + shortest(std::tanh(sol.impact_rapidity)) + " c would " +
+    what += "an impact at relative speed " + in_units(std::tanh(sol.impact_rapidity), Dimension::velocity) + " would " +
             (std::isfinite(range.log_min)
                  ? "take the material '" + model + "' out of the range its law is declared on, " + declared +
                        ": below its smallest admissible stretch s = " + shortest(std::exp(range.log_min))
                  : "crush the material '" + model + "' to zero length");
     if (demanded_known) {
       what += ": it would need Psi = " + shortest(sol.demanded_psi) +
-              " (tanh Psi = " + shortest(std::tanh(sol.demanded_psi)) + " c), at or beyond";
+              " (tanh Psi = " + in_units(std::tanh(sol.demanded_psi), Dimension::velocity) + "), at or beyond";
     } else {
       what += ": beyond";
     }
     what += " its limit Psi_max = " + shortest(sol.limit_psi) +
-            " (tanh Psi_max = " + shortest(std::tanh(sol.limit_psi)) +
-            " c, the largest impact speed an unstrained bar of it takes against a wall)";
+            " (tanh Psi_max = " + in_units(std::tanh(sol.limit_psi), Dimension::velocity) +
+            ", the largest impact speed an unstrained bar of it takes against a wall)";
   } else {
-    what += "sides separating at relative speed " + shortest(std::abs(std::tanh(sol.impact_rapidity))) + " c would " +
+    what += "sides separating at relative speed " +
+            in_units(std::abs(std::tanh(sol.impact_rapidity)), Dimension::velocity) + " would " +
             (std::isfinite(range.log_max)
                  ? "take the material '" + model + "' out of the range its law is declared on, " + declared +
                        ": beyond its largest admissible stretch s = " + shortest(std::exp(range.log_max))
@@ -758,7 +766,7 @@ void require_solved(const RiemannSolution& sol, const Material& material, double
     else
       what += ": beyond";
     what += " its limit Psi_min = " + shortest(sol.limit_psi) +
-            " (its largest tension, p = " + shortest(m.max_tension()) + ")";
+            " (its largest tension, p = " + in_units(m.max_tension(), Dimension::pressure) + ")";
   }
   throw InadmissibleError(what);
 }

@@ -166,6 +166,19 @@ TEST_F(CliTest, RunOfAnInadmissibleSceneExitsThree) {
   EXPECT_FALSE(fs::exists(dir() / "out"));
 }
 
+TEST_F(CliTest, AnInadmissibleSiSceneSaysWhyInItsOwnUnits) {
+  // A Hooke bar (V = 5000 m/s) hitting a wall at 6000 m/s: crushed at the impact, at t = 0.
+  write_file("si.yaml",
+             "name: si\nunits: si\nmaterials: {steel: {model: hooke, wave_speed: 5000, rest_density: 7850}}\n"
+             "bodies: [{name: bar, material: steel, length: 1, velocity: 6000}]\n"
+             "boundaries: {right: {type: wall}}\ntime: {end: 1.0e-3}\n");
+  const CliOutcome r = rigidity("run si.yaml --out si");
+  ASSERT_EQ(r.exit_status, 3) << r.out << r.err;
+  EXPECT_TRUE(contains(r.err, "at t = 0 s, x = 0.9999999997997231 m")) << r.err;  // 1 m contracted by γ
+  EXPECT_TRUE(contains(r.err, "relative speed 6000 m/s (2.0013845711889123e-05 c)")) << r.err;
+  EXPECT_TRUE(contains(r.err, "tanh Psi_max = 5000 m/s")) << r.err;
+}
+
 TEST_F(CliTest, RunQuietPrintsNothingButWritesEverything) {
   const CliOutcome r = rigidity("run --quiet --out run");
   ASSERT_EQ(r.exit_status, 0) << r.err;

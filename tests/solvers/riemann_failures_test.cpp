@@ -91,7 +91,7 @@ void expect_reported(const RiemannSolution& sol, const Material& faulty, std::st
     ADD_FAILURE() << "a failed Riemann problem passed require_solved";
   } catch (const NumericalError& e) {
     const std::string message = e.what();
-    EXPECT_NE(message.find("t = 1.5, x = -0.25"), std::string::npos) << message;
+    EXPECT_NE(message.find("t = 1.5 L/c, x = -0.25 L"), std::string::npos) << message;
     EXPECT_NE(message.find(what), std::string::npos) << message;
     EXPECT_NE(message.find("faulty_fluid"), std::string::npos) << message;
   }

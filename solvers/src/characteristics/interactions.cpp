@@ -430,7 +430,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     } else {
       sol = solve_free_end(m, st, side);
     }
-    require_solved(sol, m, t, x);
+    require_solved(sol, m, t, x, scene_.units);
     if (sol.parted && e.attach == Attach::boundary) {
       Wall& w = walls_[e.partner];
       w.attached = kNone;
@@ -446,7 +446,8 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
       min_p = std::max(mL->cavitation_pressure(), mR->cavitation_pressure());
     }
     sol = solve_riemann(*mL, left_region.state, *mR, right_region.state, min_p);
-    require_solved(sol, sol.status == Status::out_of_range && mR->psi_max() < mL->psi_max() ? *mR : *mL, t, x);
+    require_solved(sol, sol.status == Status::out_of_range && mR->psi_max() < mL->psi_max() ? *mR : *mL, t, x,
+                   scene_.units);
     const int holder = interface != kNone ? interface : contact_left;
     if (holder != kNone && !sol.parted) hold_back_weak_wave(sol, left_region, right_region, holder, min_p, t);
   }

@@ -24,6 +24,7 @@
 
 #include "rigidity/material.hpp"
 #include "rigidity/status.hpp"
+#include "rigidity/units.hpp"
 
 namespace rigidity {
 
@@ -142,7 +143,8 @@ struct EnergyParts {
 /// `material`) and its limit, tanh Ψ_max, the largest impact speed an unstrained bar of it takes
 /// against a wall) or NumericalError for any other status (naming the computation that failed),
 /// naming the place (t, x) of the interaction. Numbers are printed in shortest round-trip form.
-void require_solved(const RiemannSolution& solution, const Material& material, double t, double x);
+void require_solved(const RiemannSolution& solution, const Material& material, double t, double x,
+                    UnitSystem units = UnitSystem::natural);
 
 /// ln s within which a stretch, its inverse and the pressures of the built-in laws stay
 /// within double precision: s in [1e-300, 1e300].
