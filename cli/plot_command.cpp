@@ -191,6 +191,7 @@ class Distinct {
 struct RunInfo {
   std::string scene;
   UnitSystem units = UnitSystem::natural;
+  bool piecewise_constant = false;  ///< front tracking: every profile is a staircase of jumps
 };
 
 /// The string value of `"key": "..."` in a JSON text written by rigidity's JsonWriter, if any.
@@ -217,6 +218,7 @@ RunInfo read_run_info(const fs::path& run_dir) {
   const std::string json = text.str();
   if (const auto scene = json_string_member(json, "scene")) info.scene = *scene;
   if (const auto system = json_string_member(json, "system"); system && *system == "si") info.units = UnitSystem::si;
+  if (const auto method = json_string_member(json, "method")) info.piecewise_constant = *method == "characteristics";
   return info;
 }
 
@@ -265,12 +267,14 @@ struct KindStyle {
   std::string_view kind;
   std::string_view colour;
   std::string_view width;
+  std::string_view legend;  ///< what the key says: the physics, not the file's word
 };
-constexpr KindStyle kKindStyles[] = {{"contact", "#d62728", "1.5"},
-                                     {"shock", "#9467bd", "2"},
-                                     {"rarefaction", "#1f77b4", "1"},
-                                     {"interface", "#2ca02c", "1.5"},
-                                     {"boundary", "#222222", "2.5"}};
+constexpr KindStyle kKindStyles[] = {
+    {"contact", "#d62728", "1.5", "jump at c_s (linearly degenerate: compression or release)"},
+    {"shock", "#9467bd", "2", "shock"},
+    {"rarefaction", "#1f77b4", "1", "rarefaction fan step"},
+    {"interface", "#2ca02c", "1.5", "material interface"},
+    {"boundary", "#222222", "2.5", "body end"}};
 
 std::optional<std::string> xt_script(const fs::path& csv, const std::string& data, const RunInfo& run) {
   Distinct kinds;
@@ -294,12 +298,12 @@ std::optional<std::string> xt_script(const fs::path& csv, const std::string& dat
   for (const std::string& kind : kinds.values())
     if (std::none_of(std::begin(kKindStyles), std::end(kKindStyles),
                      [&](const KindStyle& s) { return s.kind == kind; }))
-      present.emplace_back(kind, KindStyle{kind, "#999999", "1"});
+      present.emplace_back(kind, KindStyle{kind, "#999999", "1", kind});
   std::vector<std::string> elements;
   for (const auto& [kind, style] : present)
     elements.push_back("data skip 1 using (strcol(5) eq " + gnuplot_quote(kind) +
                        " ? $2 : NaN):1:($4-$2):($3-$1) with vectors nohead lw " + std::string(style.width) +
-                       " lc rgb '" + std::string(style.colour) + "' title " + gnuplot_quote(kind));
+                       " lc rgb '" + std::string(style.colour) + "' title " + gnuplot_quote(std::string(style.legend)));
   return out + join_plot(elements);
 }
 
@@ -357,11 +361,15 @@ std::optional<std::string> snapshots_script(const fs::path& csv, const std::stri
   out += "set multiplot layout " + std::to_string(panel_rows) + "," + std::to_string(panel_columns) + " title " +
          gnuplot_quote(run.scene + ": snapshots") + "\n";
   out += "set xlabel " + gnuplot_quote(axis_label("X (label)", Dimension::length, run.units)) + "\n";
-  out += "set key top right\n";
+  out += "set key outside right top\n";
+  // Front tracking's states are staircases: drawn as steps (the jump half-way between two
+  // samples), not as ramps between them; the lab position x, continuous in X, and
+  // finite-volume profiles as lines.
   const std::size_t curves = times.values().size() * bodies.values().size();
   for (const std::string& quantity : quantities.values()) {
     out += "set title " + gnuplot_quote(quantity) + "\n";
     out += "set ylabel " + gnuplot_quote(quantity_label(quantity, run.units)) + "\n";
+    const std::string style = run.piecewise_constant && quantity != "x" ? "histeps" : "lines";
     std::vector<std::string> elements;
     for (std::size_t i = 0; i < times.values().size(); ++i) {
       const std::string& t = times.values()[i];
@@ -375,9 +383,9 @@ std::optional<std::string> snapshots_script(const fs::path& csv, const std::stri
         std::array<char, 32> frac{};
         std::snprintf(frac.data(), frac.size(), "%.4f", fraction);
         elements.push_back("data skip 1 using 3:(strcol(1) eq " + gnuplot_quote(t) + " && strcol(2) eq " +
-                           gnuplot_quote(body) + " && strcol(4) eq " + gnuplot_quote(quantity) +
-                           " ? $5 : NaN) with lines lw 2 dt " + std::to_string(b % 5 + 1) + " lc palette frac " +
-                           frac.data() + (titled ? " title " + gnuplot_quote(title) : std::string(" notitle")));
+                           gnuplot_quote(body) + " && strcol(4) eq " + gnuplot_quote(quantity) + " ? $5 : NaN) with " +
+                           style + " lw 2 dt " + std::to_string(b % 5 + 1) + " lc palette frac " + frac.data() +
+                           (titled ? " title " + gnuplot_quote(title) : std::string(" notitle")));
       }
     }
     out += join_plot(elements);

@@ -35,9 +35,15 @@ TEST_F(PlotTest, DrawsTheXtDiagramProbesAndSnapshots) {
   EXPECT_TRUE(contains(r.out, "xt.png, probes.png, snapshots.png"));
   // The fronts of the paper's impact are contacts (linearly degenerate) and body ends.
   const std::string xt = read_text(dir() / "run" / "xt.gp");
-  EXPECT_TRUE(contains(xt, "title 'contact'"));
-  EXPECT_TRUE(contains(xt, "title 'boundary'"));
+  EXPECT_TRUE(contains(xt, "strcol(5) eq 'contact'"));
+  EXPECT_TRUE(contains(xt, "title 'jump at c_s (linearly degenerate: compression or release)'"));
+  EXPECT_TRUE(contains(xt, "title 'body end'"));
   EXPECT_FALSE(contains(xt, "title 'shock'"));  // only the kinds present are listed
+  // A front-tracking profile is a staircase of jumps: drawn as steps, outside the key.
+  const std::string snapshots = read_text(dir() / "run" / "snapshots.gp");
+  EXPECT_TRUE(contains(snapshots, "strcol(4) eq 'p' ? $5 : NaN) with histeps")) << snapshots;
+  EXPECT_TRUE(contains(snapshots, "strcol(4) eq 'x' ? $5 : NaN) with lines")) << snapshots;  // continuous
+  EXPECT_TRUE(contains(snapshots, "set key outside"));
   // One panel per probe quantity: p, v, s of the wall probe, v, x of the rear one.
   const std::string probes = read_text(dir() / "run" / "probes.gp");
   EXPECT_TRUE(contains(probes, "set multiplot layout 2,2"));
