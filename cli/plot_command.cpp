@@ -6,11 +6,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <ostream>
 #include <sstream>
@@ -22,6 +24,7 @@
 
 #include "rigidity/cli.hpp"
 #include "rigidity/errors.hpp"
+#include "rigidity/number_text.hpp"
 #include "rigidity/quantity.hpp"
 #include "rigidity/units.hpp"
 
@@ -87,9 +90,10 @@ std::string gnuplot_comment(std::string_view text) {
   return out + line + "\n";
 }
 
-void render_gnuplot(const fs::path& gnuplot, const fs::path& dir, const std::string& name, const std::string& script) {
+void render_gnuplot(const fs::path& gnuplot, const fs::path& dir, const std::string& name, const std::string& script,
+                    std::string_view image) {
   const std::string script_name = name + ".gp";
-  const fs::path png = dir / (name + ".png");
+  const fs::path png = dir / (name + "." + std::string(image));
   {
     std::ofstream file(dir / script_name, std::ios::binary);
     file << script;
@@ -307,6 +311,81 @@ std::optional<std::string> xt_script(const fs::path& csv, const std::string& dat
   return out + join_plot(elements);
 }
 
+/// Frames of animation.gif.
+constexpr int kAnimationFrames = 60;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// A CSV cell as a finite number, if it is one.
+std::optional<double> parse_number(const std::string& text) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+/// The run as an animation (animation.gif), from fronts.csv alone: above, the x-t diagram
+/// drawn up to the frame's time; below, the bodies at that time, each front where it is
+/// then (body ends in black, waves coloured by kind), so the fronts are seen running
+/// through the bars, reflecting and letting go. For teaching the paper's scene.
+std::optional<std::string> animation_script(const fs::path& csv, const std::string& data, const RunInfo& run) {
+  Distinct kinds;
+  double t_max = 0.0, x_min = kInf, x_max = -kInf;
+  const std::optional<long> rows = for_each_row(csv, "t0,x0,t1,x1,kind,family", [&](const auto& f) {
+    if (f.size() != 6) return;
+    kinds.add(f[4]);
+    const auto t1 = parse_number(f[2]), x0 = parse_number(f[1]), x1 = parse_number(f[3]);
+    if (t1) t_max = std::max(t_max, *t1);
+    for (const auto& x : {x0, x1})
+      if (x) x_min = std::min(x_min, *x), x_max = std::max(x_max, *x);
+  });
+  if (!rows || *rows == 0 || !(t_max > 0.0) || !(x_max > x_min)) return std::nullopt;
+  const double margin = 0.05 * (x_max - x_min);
+  std::string out = gnuplot_comment("An animation of " + run.scene +
+                                    " from fronts.csv (t0,x0,t1,x1,kind,family): " + std::to_string(kAnimationFrames) +
+                                    " frames; above, the x-t diagram up to the frame's time; below, every front "
+                                    "where it is at that time.");
+  out += "# Written by `rigidity plot`; edit and rerun from this directory: gnuplot animation.gp\n";
+  out += "set terminal gif animate delay 8 loop 0 size 900,700 font 'Sans,10' noenhanced\n";
+  out += "set output 'animation.gif'\n";
+  out += "set datafile separator ','\nset datafile missing NaN\nset grid lc rgb '#dddddd'\n";
+  out += "data = " + gnuplot_quote(data) + "\n";
+  out += "t_max = " + shortest(t_max) + "\n";
+  out += "set xrange [" + shortest(x_min - margin) + ":" + shortest(x_max + margin) + "]\n";
+  out += "set xlabel " + gnuplot_quote(axis_label("x", Dimension::length, run.units)) + "\n";
+  // A segment drawn up to the frame's time, and where it is at that time.
+  out += "frac(t0, t1) = t1 > t0 ? (T - t0)/(t1 - t0) : 1\n";
+  out += "upto(t0, t1) = T < t0 ? NaN : (T > t1 ? 1 : frac(t0, t1))\n";
+  out += "at(t0, x0, t1, x1) = (T >= t0 && T <= t1) ? x0 + (x1 - x0)*frac(t0, t1) : NaN\n";
+  std::vector<std::pair<std::string, KindStyle>> present;
+  for (const KindStyle& style : kKindStyles)
+    if (kinds.contains(std::string(style.kind))) present.emplace_back(std::string(style.kind), style);
+  std::vector<std::string> diagram, strip;
+  for (const auto& [kind, style] : present) {
+    const std::string is_kind = "strcol(5) eq " + gnuplot_quote(kind);
+    diagram.push_back("data skip 1 using ((" + is_kind +
+                      ") ? $2 : NaN):1:(($4-$2)*upto($1,$3)):(($3-$1)*upto($1,$3)) " + "with vectors nohead lw " +
+                      std::string(style.width) + " lc rgb '" + std::string(style.colour) + "' title " +
+                      gnuplot_quote(std::string(style.legend)));
+    strip.push_back(
+        "data skip 1 using ((" + is_kind + ") ? at($1,$2,$3,$4) : NaN):(-1):(0):(2) with vectors nohead lw " +
+        std::string(kind == "boundary" ? "3" : style.width) + " lc rgb '" + std::string(style.colour) + "' notitle");
+  }
+  out += "do for [frame = 0:" + std::to_string(kAnimationFrames - 1) + "] {\n";
+  out += "  T = t_max * frame / " + std::to_string(kAnimationFrames - 1) + ".0\n";
+  out += "  set multiplot layout 2,1 title sprintf(" + gnuplot_quote(run.scene + ": t = %.4g") + ", T)\n";
+  out += "  set size 1,0.68\n  set origin 0,0.3\n  set key top left opaque box\n";
+  out += "  set ylabel " + gnuplot_quote(axis_label("t", Dimension::time, run.units)) + "\n";
+  out += "  set yrange [0:t_max]\n";
+  out += "  set arrow 1 from graph 0, first T to graph 1, first T nohead lc rgb '#888888' dt 2\n";
+  out += "  " + join_plot(diagram);
+  out += "  unset arrow 1\n";
+  out += "  set size 1,0.3\n  set origin 0,0\n  unset key\n  unset ytics\n  set ylabel 'fronts at t'\n";
+  out += "  set yrange [-1.5:1.5]\n";
+  out += "  " + join_plot(strip);
+  out += "  set ytics\n  unset multiplot\n}\n";
+  return out;
+}
+
 std::optional<std::string> probes_script(const fs::path& csv, const std::string& data, const RunInfo& run) {
   Distinct quantities;
   std::vector<std::pair<std::string, Distinct>> probes_of;  // quantity -> probes that sample it
@@ -444,6 +523,7 @@ int plot_command(std::span<const std::string> args, std::ostream& out) {
                              {"probes", "probes.csv", probes_script},
                              {"snapshots", "snapshots.csv", snapshots_script}};
   std::vector<std::string> drawn;
+  bool animated = false;
   for (const Plot& plot : kPlots) {
     const fs::path csv = run_dir / plot.csv;
     const std::optional<std::string> script = plot.script(csv, path_from(out_dir, csv), run);
@@ -455,14 +535,22 @@ int plot_command(std::span<const std::string> args, std::ostream& out) {
     render_gnuplot(gnuplot, out_dir, std::string(plot.name), *script);
     drawn.push_back(std::string(plot.name));
   }
+  // The animation (a GIF of the x-t diagram growing, with the bodies below).
+  const fs::path fronts = run_dir / "fronts.csv";
+  if (const std::optional<std::string> script = animation_script(fronts, path_from(out_dir, fronts), run)) {
+    render_gnuplot(gnuplot, out_dir, "animation", *script, "gif");
+    animated = true;
+  }
   if (drawn.empty()) {
     out << "nothing to plot in " << run_dir.string() << "\n";
     return kExitOk;
   }
   out << "plots in " << out_dir.string() << (out_dir.string().ends_with('/') ? "" : "/") << ":";
   for (std::size_t i = 0; i < drawn.size(); ++i) out << (i == 0 ? " " : ", ") << drawn[i] << ".png";
+  if (animated) out << ", animation.gif";
   out << " (gnuplot scripts beside them: ";
   for (std::size_t i = 0; i < drawn.size(); ++i) out << (i == 0 ? "" : ", ") << drawn[i] << ".gp";
+  if (animated) out << ", animation.gp";
   out << ")\n";
   return kExitOk;
 }

@@ -97,10 +97,10 @@ int sweep_command(std::span<const std::string> args, std::ostream& out);
 /// The gnuplot executable found on PATH, or an empty path if there is none.
 [[nodiscard]] std::filesystem::path find_gnuplot();
 /// Writes `script` to dir/NAME.gp (kept, so that users can tweak and rerun it) and runs
-/// `gnuplot NAME.gp` in dir, which is expected to write dir/NAME.png.
-/// \throws CommandError (exit 1) with gnuplot's messages if it fails or writes no PNG
+/// `gnuplot NAME.gp` in dir, which is expected to write dir/NAME.IMAGE (png, or gif).
+/// \throws CommandError (exit 1) with gnuplot's messages if it fails or writes no image
 void render_gnuplot(const std::filesystem::path& gnuplot, const std::filesystem::path& dir, const std::string& name,
-                    const std::string& script);
+                    const std::string& script, std::string_view image = "png");
 /// `text` as a single-quoted gnuplot string literal.
 [[nodiscard]] std::string gnuplot_quote(std::string_view text);
 /// `text` as gnuplot comment lines ("# ..."), wrapped at word boundaries.

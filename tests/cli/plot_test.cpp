@@ -32,7 +32,14 @@ TEST_F(PlotTest, DrawsTheXtDiagramProbesAndSnapshots) {
     EXPECT_TRUE(is_png(dir() / "run" / (std::string(plot) + ".png")));
     EXPECT_TRUE(fs::is_regular_file(dir() / "run" / (std::string(plot) + ".gp"))) << plot;
   }
-  EXPECT_TRUE(contains(r.out, "xt.png, probes.png, snapshots.png"));
+  EXPECT_TRUE(contains(r.out, "xt.png, probes.png, snapshots.png, animation.gif"));
+  // The animation: a GIF of 60 frames, the x-t diagram up to each frame's time and the fronts
+  // where they are then.
+  const std::string gif = read_text(dir() / "run" / "animation.gif");
+  EXPECT_EQ(gif.substr(0, 6), "GIF89a");
+  const std::string animation = read_text(dir() / "run" / "animation.gp");
+  EXPECT_TRUE(contains(animation, "do for [frame = 0:59]"));
+  EXPECT_TRUE(contains(animation, "set terminal gif animate"));
   // The fronts of the paper's impact are contacts (linearly degenerate) and body ends.
   const std::string xt = read_text(dir() / "run" / "xt.gp");
   EXPECT_TRUE(contains(xt, "strcol(5) eq 'contact'"));
