@@ -13,12 +13,14 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <map>
 #include <optional>
 #include <ostream>
 #include <sstream>
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <tuple>
 #include <unordered_set>
 #include <vector>
 
@@ -419,10 +421,37 @@ std::optional<std::string> probes_script(const fs::path& csv, const std::string&
   return out + "unset multiplot\n";
 }
 
-std::optional<std::string> snapshots_script(const fs::path& csv, const std::string& data, const RunInfo& run) {
-  Distinct times, bodies, quantities;
+/// The profiles of snapshots.csv against the lab position: dir/snapshots_lab.csv
+/// (t,body,x,quantity,value), each sample at the x the same snapshot gives its label. Only
+/// when the snapshots sample x. Returns whether it was written.
+bool write_lab_profiles(const fs::path& csv, const fs::path& out) {
+  std::map<std::tuple<std::string, std::string, std::string>, std::string> x_of;  // (t, body, X) -> x
+  std::vector<std::vector<std::string>> samples;
   const std::optional<long> rows = for_each_row(csv, "t,body,X,quantity,value", [&](const auto& f) {
-    if (f.size() != 5 || f[3] == "X") return;  // X against X says nothing
+    if (f.size() != 5) return;
+    if (f[3] == "x") {
+      x_of[{f[0], f[1], f[2]}] = f[4];
+    } else if (f[3] != "X") {
+      samples.push_back(f);
+    }
+  });
+  if (!rows || x_of.empty() || samples.empty()) return false;
+  std::ofstream file(out, std::ios::binary);
+  file << "t,body,x,quantity,value\n";
+  for (const auto& f : samples) {
+    const auto x = x_of.find({f[0], f[1], f[2]});
+    if (x != x_of.end()) file << f[0] << "," << f[1] << "," << x->second << "," << f[3] << "," << f[4] << "\n";
+  }
+  file.close();
+  if (!file) throw CommandError(kExitInternal, "cannot write " + out.string());
+  return true;
+}
+
+std::optional<std::string> profiles_script(const fs::path& csv, const std::string& data, const RunInfo& run, bool lab) {
+  const std::string position = lab ? "x" : "X";
+  Distinct times, bodies, quantities;
+  const std::optional<long> rows = for_each_row(csv, "t,body," + position + ",quantity,value", [&](const auto& f) {
+    if (f.size() != 5 || f[3] == position) return;  // X against X says nothing
     times.add(f[0]);
     bodies.add(f[1]);
     quantities.add(f[3]);
@@ -430,25 +459,28 @@ std::optional<std::string> snapshots_script(const fs::path& csv, const std::stri
   if (!rows || quantities.values().empty()) return std::nullopt;
 
   const auto [panel_rows, panel_columns] = panel_grid(quantities.values().size());
-  std::string out = script_header("Snapshot profiles of " + run.scene +
-                                      " from snapshots.csv (t,body,X,quantity,value): one panel per quantity, "
-                                      "one line per time (colour) and body (dash).",
-                                  "snapshots", panel_columns == 1 ? 900 : 1300, 80 + 330 * panel_rows);
+  std::string out =
+      script_header("Snapshot profiles of " + run.scene +
+                        (lab ? " against the lab position, from snapshots_lab.csv (t,body,x,quantity,value)"
+                             : " from snapshots.csv (t,body,X,quantity,value)") +
+                        ": one panel per quantity, one line per time (colour) and body (dash).",
+                    lab ? "snapshots_lab" : "snapshots", panel_columns == 1 ? 900 : 1300, 80 + 330 * panel_rows);
   out += "data = " + gnuplot_quote(data) + "\n";
   out += "set palette defined (0 '#1f3b99', 0.5 '#2ca02c', 1 '#d62728')  # early to late\n";
   out += "unset colorbox\n";
   out += "set multiplot layout " + std::to_string(panel_rows) + "," + std::to_string(panel_columns) + " title " +
-         gnuplot_quote(run.scene + ": snapshots") + "\n";
-  out += "set xlabel " + gnuplot_quote(axis_label("X (label)", Dimension::length, run.units)) + "\n";
+         gnuplot_quote(run.scene + (lab ? ": snapshots in the lab frame" : ": snapshots")) + "\n";
+  out += "set xlabel " +
+         gnuplot_quote(axis_label(lab ? "x (lab position)" : "X (label)", Dimension::length, run.units)) + "\n";
   out += "set key outside right top\n";
-  // Front tracking's states are staircases: drawn as steps (the jump half-way between two
-  // samples), not as ramps between them; the lab position x, continuous in X, and
+  // Front tracking's states are staircases: drawn as steps (each jump at the first sample
+  // past it), not as ramps between samples; the lab position x, continuous in X, and
   // finite-volume profiles as lines.
   const std::size_t curves = times.values().size() * bodies.values().size();
   for (const std::string& quantity : quantities.values()) {
     out += "set title " + gnuplot_quote(quantity) + "\n";
     out += "set ylabel " + gnuplot_quote(quantity_label(quantity, run.units)) + "\n";
-    const std::string style = run.piecewise_constant && quantity != "x" ? "histeps" : "lines";
+    const std::string style = run.piecewise_constant && quantity != "x" ? "steps" : "lines";
     std::vector<std::string> elements;
     for (std::size_t i = 0; i < times.values().size(); ++i) {
       const std::string& t = times.values()[i];
@@ -470,6 +502,10 @@ std::optional<std::string> snapshots_script(const fs::path& csv, const std::stri
     out += join_plot(elements);
   }
   return out + "unset multiplot\n";
+}
+
+std::optional<std::string> snapshots_script(const fs::path& csv, const std::string& data, const RunInfo& run) {
+  return profiles_script(csv, data, run, false);
 }
 
 /// `target` as seen from `base` (relative if possible), for the scripts' data paths.
@@ -534,6 +570,15 @@ int plot_command(std::span<const std::string> args, std::ostream& out) {
     }
     render_gnuplot(gnuplot, out_dir, std::string(plot.name), *script);
     drawn.push_back(std::string(plot.name));
+  }
+  // The same profiles against the lab position, when the snapshots sample x.
+  const fs::path snapshots = run_dir / "snapshots.csv";
+  const fs::path lab = out_dir / "snapshots_lab.csv";
+  if (fs::exists(snapshots, error) && write_lab_profiles(snapshots, lab)) {
+    if (const std::optional<std::string> script = profiles_script(lab, path_from(out_dir, lab), run, true)) {
+      render_gnuplot(gnuplot, out_dir, "snapshots_lab", *script);
+      drawn.push_back("snapshots_lab");
+    }
   }
   // The animation (a GIF of the x-t diagram growing, with the bodies below).
   const fs::path fronts = run_dir / "fronts.csv";

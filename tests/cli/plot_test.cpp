@@ -32,7 +32,7 @@ TEST_F(PlotTest, DrawsTheXtDiagramProbesAndSnapshots) {
     EXPECT_TRUE(is_png(dir() / "run" / (std::string(plot) + ".png")));
     EXPECT_TRUE(fs::is_regular_file(dir() / "run" / (std::string(plot) + ".gp"))) << plot;
   }
-  EXPECT_TRUE(contains(r.out, "xt.png, probes.png, snapshots.png, animation.gif"));
+  EXPECT_TRUE(contains(r.out, "xt.png, probes.png, snapshots.png, snapshots_lab.png, animation.gif"));
   // The animation: a GIF of 60 frames, the x-t diagram up to each frame's time and the fronts
   // where they are then.
   const std::string gif = read_text(dir() / "run" / "animation.gif");
@@ -48,9 +48,16 @@ TEST_F(PlotTest, DrawsTheXtDiagramProbesAndSnapshots) {
   EXPECT_FALSE(contains(xt, "title 'shock'"));  // only the kinds present are listed
   // A front-tracking profile is a staircase of jumps: drawn as steps, outside the key.
   const std::string snapshots = read_text(dir() / "run" / "snapshots.gp");
-  EXPECT_TRUE(contains(snapshots, "strcol(4) eq 'p' ? $5 : NaN) with histeps")) << snapshots;
+  EXPECT_TRUE(contains(snapshots, "strcol(4) eq 'p' ? $5 : NaN) with steps")) << snapshots;
   EXPECT_TRUE(contains(snapshots, "strcol(4) eq 'x' ? $5 : NaN) with lines")) << snapshots;  // continuous
   EXPECT_TRUE(contains(snapshots, "set key outside"));
+  // The same profiles against the lab position (the paper's snapshots sample x): p at the
+  // sample's lab position, from the same snapshot.
+  EXPECT_TRUE(is_png(dir() / "run" / "snapshots_lab.png"));
+  const std::string lab = read_text(dir() / "run" / "snapshots_lab.csv");
+  EXPECT_EQ(lab.substr(0, lab.find('\n')), "t,body,x,quantity,value");
+  EXPECT_TRUE(contains(lab, "\n0.5,bar,")) << lab;
+  EXPECT_EQ(lab.find(",x,", lab.find('\n')), std::string::npos) << lab;  // x against x says nothing
   // One panel per probe quantity: p, v, s of the wall probe, v, x of the rear one.
   const std::string probes = read_text(dir() / "run" / "probes.gp");
   EXPECT_TRUE(contains(probes, "set multiplot layout 2,2"));
