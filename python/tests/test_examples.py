@@ -36,3 +36,25 @@ def test_a_hooke_bar_hit_at_its_wave_speed_is_refused():
 def test_the_fluid_rebounds_slower_than_it_came():
     _, _, rebound = wall_impact.impact("constant_sound_speed", 0.5, sound_speed=0.5)
     assert -0.5 < rebound < -0.3 and math.isfinite(rebound)
+
+
+import work_precision  # noqa: E402
+
+
+def test_the_exact_fan_joins_the_piston_state_to_the_gas_at_rest():
+    s_piston = work_precision.S0 * math.exp(math.atanh(work_precision.U) / work_precision.V)
+    assert work_precision.exact_stretch(0.0, work_precision.T) == pytest.approx(s_piston, rel=1e-12)
+    assert work_precision.exact_stretch(1.0, work_precision.T) == work_precision.S0  # the head has not got there
+    inside = work_precision.exact_stretch(0.35, work_precision.T)  # X/t = 0.7, between tail and head
+    assert work_precision.S0 < inside < s_piston
+    assert work_precision.label_speed(inside) == pytest.approx(0.35 / work_precision.T, rel=1e-9)
+
+
+def test_front_tracking_converges_to_the_exact_fan_as_the_tolerance_shrinks():
+    coarse, _ = work_precision.error_and_time({"method": "characteristics", "tolerance": 1e-2})
+    fine, _ = work_precision.error_and_time({"method": "characteristics", "tolerance": 1e-3})
+    assert coarse < 2e-3  # fan steps of 2e-2 in Psi over a fan of width ~0.1
+    assert fine < coarse / 5  # first order in the step
+    few, _ = work_precision.error_and_time({"method": "finite_volume", "cells": 100, "order": 2})
+    many, _ = work_precision.error_and_time({"method": "finite_volume", "cells": 400, "order": 2})
+    assert many < few / 2
