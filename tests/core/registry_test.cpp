@@ -6,11 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "material_test_support.hpp"
@@ -143,6 +145,50 @@ TEST(MaterialRegistry, DuplicateAfterStartupThrowsNamingBothPlaces) {
   }
   EXPECT_EQ(registry.names(), expected_names());
   EXPECT_EQ(registry.at("rigid").file, original.file);
+}
+
+/// A material a plugin would bring, added and withdrawn again in a batch.
+class BatchMaterial final : public PressureLawMaterial {
+ public:
+  static constexpr std::string_view kName = "batch_material";
+  static std::string doc() { return "Test only: a material of a plugin that is refused."; }
+  static std::vector<ParameterSpec> parameters() { return {rest_density_parameter()}; }
+  explicit BatchMaterial(const ParameterValues& values) : PressureLawMaterial(values.number("rest_density")) {}
+  [[nodiscard]] std::string_view model() const override { return kName; }
+
+ private:
+  [[nodiscard]] double pressure_law(double s) const override { return 0.5 * rest_density() * (1.0 / (s * s) - 1.0); }
+};
+
+TEST(MaterialRegistry, LookupsOnOtherThreadsSeeThePluginsAddedAndWithdrawnWhole) {
+  // A sweep case may load a plugin while others look materials up: the registry is shared.
+  MaterialRegistry& registry = MaterialRegistry::instance();
+  const std::vector<std::string> before = registry.names();
+  std::vector<std::string> with = before;
+  with.push_back("batch_material");
+  std::sort(with.begin(), with.end());
+  std::atomic<bool> done{false};
+  std::atomic<long> lookups{0}, torn{0};
+  const auto look = [&] {
+    while (!done.load()) {
+      if (registry.find("rigid") == nullptr) ++torn;
+      const std::vector<std::string> names = registry.names();
+      if (names != before && names != with) ++torn;
+      ++lookups;
+    }
+  };
+  std::thread a(look), b(look);
+  for (int i = 0; i < 2000 || lookups.load() < 200; ++i) {  // while both look
+    registry.begin_batch();
+    registry.add(describe_material<BatchMaterial>(__FILE__, __LINE__));
+    registry.end_batch(false);
+  }
+  done = true;
+  a.join();
+  b.join();
+  EXPECT_GT(lookups.load(), 0);
+  EXPECT_EQ(torn.load(), 0);
+  EXPECT_EQ(registry.names(), before);
 }
 
 }  // namespace

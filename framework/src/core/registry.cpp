@@ -21,6 +21,11 @@ MaterialRegistry& MaterialRegistry::instance() {
 }
 
 bool MaterialRegistry::add(MaterialInfo info) {
+  const std::unique_lock lock(mutex_);
+  return add_locked(std::move(info));
+}
+
+bool MaterialRegistry::add_locked(MaterialInfo info) {
   for (const MaterialInfo& existing : materials_) {
     if (existing.name != info.name) continue;
     std::string conflict = "material '" + info.name + "' is registered twice: at " + existing.file + ":" +
@@ -34,7 +39,8 @@ bool MaterialRegistry::add(MaterialInfo info) {
 }
 
 bool MaterialRegistry::add_compiled(int abi_version, Describe describe, const char* file, int line) {
-  if (abi_version == kPluginAbiVersion) return add(describe(file, line));
+  const std::unique_lock lock(mutex_);
+  if (abi_version == kPluginAbiVersion) return add_locked(describe(file, line));
   std::string conflict = "the material registered at " + std::string(file) + ":" + std::to_string(line) +
                          " was compiled against rigidity plugin ABI " + std::to_string(abi_version) +
                          ", this rigidity has plugin ABI " + std::to_string(kPluginAbiVersion);
@@ -44,22 +50,26 @@ bool MaterialRegistry::add_compiled(int abi_version, Describe describe, const ch
 }
 
 void MaterialRegistry::begin_batch() {
+  const std::unique_lock lock(mutex_);
   in_batch_ = true;
   batch_first_material_ = materials_.size();
   batch_first_conflict_ = conflicts_.size();
 }
 
 std::vector<const MaterialInfo*> MaterialRegistry::batch_materials() const {
+  const std::shared_lock lock(mutex_);
   std::vector<const MaterialInfo*> out;
   for (std::size_t i = batch_first_material_; i < materials_.size(); ++i) out.push_back(&materials_[i]);
   return out;
 }
 
 std::vector<std::string> MaterialRegistry::batch_conflicts() const {
+  const std::shared_lock lock(mutex_);
   return {conflicts_.begin() + static_cast<std::ptrdiff_t>(batch_first_conflict_), conflicts_.end()};
 }
 
 void MaterialRegistry::end_batch(bool keep) {
+  const std::unique_lock lock(mutex_);
   if (!keep)
     materials_.erase(materials_.begin() + static_cast<std::ptrdiff_t>(batch_first_material_), materials_.end());
   conflicts_.erase(conflicts_.begin() + static_cast<std::ptrdiff_t>(batch_first_conflict_), conflicts_.end());
@@ -67,6 +77,7 @@ void MaterialRegistry::end_batch(bool keep) {
 }
 
 void MaterialRegistry::check() const {
+  const std::shared_lock lock(mutex_);
   if (conflicts_.empty()) return;
   std::string all;
   for (const std::string& c : conflicts_) all += (all.empty() ? "" : "\n") + c;
@@ -74,6 +85,7 @@ void MaterialRegistry::check() const {
 }
 
 const MaterialInfo* MaterialRegistry::find(std::string_view name) const {
+  const std::shared_lock lock(mutex_);
   for (const MaterialInfo& m : materials_)
     if (m.name == name) return &m;
   return nullptr;
@@ -90,6 +102,7 @@ const MaterialInfo& MaterialRegistry::at(std::string_view name) const {
 }
 
 std::vector<std::string> MaterialRegistry::names() const {
+  const std::shared_lock lock(mutex_);
   std::vector<std::string> out;
   for (const MaterialInfo& m : materials_) out.push_back(m.name);
   std::sort(out.begin(), out.end());

@@ -21,6 +21,7 @@
 #include <deque>
 #include <functional>
 #include <memory>
+#include <shared_mutex>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -92,6 +93,10 @@ class MaterialRegistry {
 
  private:
   MaterialRegistry() = default;
+  bool add_locked(MaterialInfo info);
+  /// Lookups share it; adding and withdrawing take it alone, so that a sweep case loading a
+  /// plugin on one thread does not race another case looking a material up.
+  mutable std::shared_mutex mutex_;
   std::deque<MaterialInfo> materials_;  ///< a deque: references stay valid as plugins add more
   std::vector<std::string> conflicts_;
   bool sealed_ = false;
