@@ -1,6 +1,9 @@
 // Command-line parsing: options declared per command, unknown ones named with the
 // closest valid spelling.
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <optional>
 
 #include "rigidity/cli.hpp"
 #include "rigidity/errors.hpp"
@@ -75,6 +78,14 @@ Arguments parse_arguments(const std::string& command, std::span<const std::strin
     parsed.options.emplace_back(name, std::move(value));
   }
   return parsed;
+}
+
+std::optional<double> parse_number(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
 }
 
 std::vector<std::string> scene_overrides(const Arguments& args, const std::string& command) {

@@ -93,15 +93,6 @@ std::vector<std::string> split_list(const std::string& text, std::string_view op
   }
 }
 
-/// `text` as a finite number, or nullopt.
-std::optional<double> parse_number(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size() || !std::isfinite(value)) return std::nullopt;
-  return value;
-}
-
 /// An impact speed in (0, 1), from `option`'s value.
 double impact_speed(const std::string& text, std::string_view option) {
   const std::optional<double> v = parse_number(text);

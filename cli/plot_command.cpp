@@ -282,6 +282,19 @@ constexpr KindStyle kKindStyles[] = {
     {"interface", "#2ca02c", "1.5", "material interface"},
     {"boundary", "#222222", "2.5", "body end"}};
 
+/// The front kinds a run has, in the order of kKindStyles; a kind this version does not know,
+/// in grey under its own name.
+std::vector<std::pair<std::string, KindStyle>> present_kinds(const Distinct& kinds) {
+  std::vector<std::pair<std::string, KindStyle>> present;
+  for (const KindStyle& style : kKindStyles)
+    if (kinds.contains(std::string(style.kind))) present.emplace_back(std::string(style.kind), style);
+  for (const std::string& kind : kinds.values())
+    if (std::none_of(std::begin(kKindStyles), std::end(kKindStyles),
+                     [&](const KindStyle& s) { return s.kind == kind; }))
+      present.emplace_back(kind, KindStyle{kind, "#999999", "1", kind});
+  return present;
+}
+
 std::optional<std::string> xt_script(const fs::path& csv, const std::string& data, const RunInfo& run) {
   Distinct kinds;
   const std::optional<long> rows = for_each_row(csv, "t0,x0,t1,x1,kind,family", [&](const auto& f) {
@@ -297,14 +310,7 @@ std::optional<std::string> xt_script(const fs::path& csv, const std::string& dat
   out += "set ylabel " + gnuplot_quote(axis_label("t", Dimension::time, run.units)) + "\n";
   out += "set key outside right\n";
   out += "data = " + gnuplot_quote(data) + "\n";
-  // The kinds present, in the order of kKindStyles; a kind this version does not know, in grey.
-  std::vector<std::pair<std::string, KindStyle>> present;
-  for (const KindStyle& style : kKindStyles)
-    if (kinds.contains(std::string(style.kind))) present.emplace_back(std::string(style.kind), style);
-  for (const std::string& kind : kinds.values())
-    if (std::none_of(std::begin(kKindStyles), std::end(kKindStyles),
-                     [&](const KindStyle& s) { return s.kind == kind; }))
-      present.emplace_back(kind, KindStyle{kind, "#999999", "1", kind});
+  const std::vector<std::pair<std::string, KindStyle>> present = present_kinds(kinds);
   std::vector<std::string> elements;
   for (const auto& [kind, style] : present)
     elements.push_back("data skip 1 using (strcol(5) eq " + gnuplot_quote(kind) +
@@ -316,14 +322,6 @@ std::optional<std::string> xt_script(const fs::path& csv, const std::string& dat
 /// Frames of animation.gif.
 constexpr int kAnimationFrames = 60;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-/// A CSV cell as a finite number, if it is one.
-std::optional<double> parse_number(const std::string& text) {
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value)) return std::nullopt;
-  return value;
-}
 
 /// The run as an animation (animation.gif), from fronts.csv alone: above, the x-t diagram
 /// drawn up to the frame's time; below, the bodies at that time, each front where it is
@@ -358,9 +356,7 @@ std::optional<std::string> animation_script(const fs::path& csv, const std::stri
   out += "frac(t0, t1) = t1 > t0 ? (T - t0)/(t1 - t0) : 1\n";
   out += "upto(t0, t1) = T < t0 ? NaN : (T > t1 ? 1 : frac(t0, t1))\n";
   out += "at(t0, x0, t1, x1) = (T >= t0 && T <= t1) ? x0 + (x1 - x0)*frac(t0, t1) : NaN\n";
-  std::vector<std::pair<std::string, KindStyle>> present;
-  for (const KindStyle& style : kKindStyles)
-    if (kinds.contains(std::string(style.kind))) present.emplace_back(std::string(style.kind), style);
+  const std::vector<std::pair<std::string, KindStyle>> present = present_kinds(kinds);
   std::vector<std::string> diagram, strip;
   for (const auto& [kind, style] : present) {
     const std::string is_kind = "strcol(5) eq " + gnuplot_quote(kind);

@@ -78,6 +78,9 @@ struct Arguments {
 /// \throws CommandError (usage) on a value without '=' or without a key
 [[nodiscard]] std::vector<std::string> scene_overrides(const Arguments& args, const std::string& command);
 
+/// `text` (an argument or a CSV cell) as a finite number, or nullopt.
+[[nodiscard]] std::optional<double> parse_number(const std::string& text);
+
 /// The usage line(s) of a command ("" → every command).
 [[nodiscard]] std::string usage(std::string_view command);
 /// The full help text of a command ("" → the program).
