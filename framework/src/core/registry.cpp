@@ -165,7 +165,9 @@ namespace {
 std::mutex admissible_mutex;
 std::set<std::string> admissible_sets;
 
+/// The key of a set of numbers for one registration; empty for a set with text parameters.
 std::string parameter_key(const MaterialInfo& info, const ParameterValues& values) {
+  if (!values.texts().empty()) return {};
   char number[40];
   std::snprintf(number, sizeof number, "%p", static_cast<const void*>(&info));  // one registration
   std::string key = info.name + "@" + number;
@@ -176,17 +178,17 @@ std::string parameter_key(const MaterialInfo& info, const ParameterValues& value
   return key;
 }
 
-bool admissible_before(const MaterialInfo& info, const ParameterValues& values) {
-  if (!values.texts().empty()) return false;
+bool admissible_before(const std::string& key) {
+  if (key.empty()) return false;
   const std::lock_guard<std::mutex> lock(admissible_mutex);
-  return admissible_sets.count(parameter_key(info, values)) != 0;
+  return admissible_sets.count(key) != 0;
 }
 
-void remember_admissible(const MaterialInfo& info, const ParameterValues& values) {
-  if (!values.texts().empty()) return;
+void remember_admissible(const std::string& key) {
+  if (key.empty()) return;
   const std::lock_guard<std::mutex> lock(admissible_mutex);
   if (admissible_sets.size() > 100000) admissible_sets.clear();  // a bound, not a policy
-  admissible_sets.insert(parameter_key(info, values));
+  admissible_sets.insert(key);
 }
 
 }  // namespace
@@ -219,10 +221,11 @@ std::shared_ptr<const Material> build_material(const MaterialInfo& info, const P
     if (spec.required && !values.has(spec.name))
       throw std::invalid_argument("'" + info.name + "' needs '" + spec.name + "'");
   std::shared_ptr<const Material> material = info.make(values);
-  if (admissible_before(info, values)) return material;
+  const std::string key = parameter_key(info, values);
+  if (admissible_before(key)) return material;
   if (const std::string problem = admissibility_problem(*material); !problem.empty())
     throw std::invalid_argument(problem);
-  remember_admissible(info, values);
+  remember_admissible(key);
   return material;
 }
 
