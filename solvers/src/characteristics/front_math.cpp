@@ -78,48 +78,55 @@ Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch 
 }
 
 Solved<double> curve_rapidity(const Material& m, const State& outer, double psi_outer, double outer_speed, double z,
-                              int family) {
+                              int family, bool* shock) {
   const Stretch s = Stretch::from_log(z);
   // The state on the integral curve; the wave is a shock where the characteristics of its
   // family converge across it (as wave_is_shock decides, with the outer speed given).
   const double on_curve = outer.rapidity + family * (m.riemann_psi(s) - psi_outer);
-  if (m.linearly_degenerate() || s == outer.stretch) return Solved<double>{on_curve, Status::ok};
-  const double star_speed = characteristic_speed(m, State{on_curve, s}, family);
-  const bool shock = family < 0 ? !(outer_speed < star_speed) : !(star_speed < outer_speed);
-  if (shock) return hugoniot_rapidity(m, outer, s, family);
+  bool converging = false;
+  if (!m.linearly_degenerate() && s != outer.stretch) {
+    const double star_speed = characteristic_speed(m, State{on_curve, s}, family);
+    converging = family < 0 ? !(outer_speed < star_speed) : !(star_speed < outer_speed);
+  }
+  if (shock != nullptr) *shock = converging;
+  if (converging) return hugoniot_rapidity(m, outer, s, family);
   return Solved<double>{on_curve, Status::ok};
 }
 
-Solved<State> same_material_star(const Material& m, const State& left, const State& right, const State& guess) {
+Solved<SameMaterialStar> same_material_star(const Material& m, const State& left, const State& right,
+                                            const State& guess) {
+  using Result = Solved<SameMaterialStar>;
   const double psi_left = m.riemann_psi(left.stretch), psi_right = m.riemann_psi(right.stretch);
   const double speed_left = characteristic_speed(m, left, -1), speed_right = characteristic_speed(m, right, +1);
-  double rapidity = guess.rapidity;
+  SameMaterialStar star;
   auto mismatch = [&](double z, double& g) {
-    const Solved<double> a = curve_rapidity(m, left, psi_left, speed_left, z, -1);
-    const Solved<double> b = curve_rapidity(m, right, psi_right, speed_right, z, +1);
+    const Solved<double> a = curve_rapidity(m, left, psi_left, speed_left, z, -1, &star.shock[0]);
+    const Solved<double> b = curve_rapidity(m, right, psi_right, speed_right, z, +1, &star.shock[1]);
     if (!a.ok() || !b.ok()) return false;
     g = a.value - b.value;
-    rapidity = 0.5 * (a.value + b.value);
+    star.state = State{0.5 * (a.value + b.value), Stretch::from_log(z)};
+    star.off[0] = star.off[1] = 0.5 * std::abs(g);
     return std::isfinite(g);
   };
+  // Round-off in the rapidities the curves give: below it, another step changes nothing.
+  const auto settled = [&](double g) { return std::abs(g) <= 4.0 * kEps * (1.0 + std::abs(star.state.rapidity)); };
   double z0 = guess.stretch.log(), g0 = 0.0;
-  if (!mismatch(z0, g0)) return Solved<State>::failure(Status::not_converged);
-  if (g0 == 0.0) return Solved<State>{State{rapidity, guess.stretch}, Status::ok};
+  if (!mismatch(z0, g0)) return Result::failure(Status::not_converged);
+  if (settled(g0)) return Result{star, Status::ok};
   // dφ/d ln s is +c_s on the C− curve and −c_s on the C+ curve near the star: g' ≈ 2 c_s.
   double z1 = z0 - g0 / (2.0 * m.sound_speed(guess.stretch)), g1 = 0.0;
   for (int iteration = 0; iteration < 40; ++iteration) {
     const StretchRange range = m.admissible();
-    if (!(z1 > range.log_min && z1 < range.log_max)) return Solved<State>::failure(Status::out_of_range);
-    if (!mismatch(z1, g1)) return Solved<State>::failure(Status::not_converged);
-    if (g1 == 0.0 || std::abs(z1 - z0) <= 2.0 * kEps * (1.0 + std::abs(z1)))
-      return Solved<State>{State{rapidity, Stretch::from_log(z1)}, Status::ok};
-    if (g1 == g0) return Solved<State>::failure(Status::not_converged);
+    if (!(z1 > range.log_min && z1 < range.log_max)) return Result::failure(Status::out_of_range);
+    if (!mismatch(z1, g1)) return Result::failure(Status::not_converged);
+    if (settled(g1) || std::abs(z1 - z0) <= 2.0 * kEps * (1.0 + std::abs(z1))) return Result{star, Status::ok};
+    if (g1 == g0) return Result::failure(Status::not_converged);
     const double z2 = z1 - g1 * (z1 - z0) / (g1 - g0);
     z0 = z1;
     g0 = g1;
     z1 = z2;
   }
-  return Solved<State>::failure(Status::not_converged);
+  return Result::failure(Status::not_converged);
 }
 
 bool same_state(const State& a, const State& b) {

@@ -39,15 +39,27 @@ Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch 
 /// closed-form Hugoniot where that wave is a shock, else the integral curve (the other
 /// family's invariant carried across: φ = φ_outer + family (Ψ − Ψ_outer)).
 /// `outer_speed` is the characteristic speed of family `family` in `outer` (a root find along
-/// one curve asks for it once).
+/// one curve asks for it once). `shock`, if given, says which of the two it was.
 Solved<double> curve_rapidity(const Material& m, const State& outer, double psi_outer, double outer_speed, double z,
-                              int family);
+                              int family, bool* shock = nullptr);
+
+/// The star state of two states of one material, with what its two waves are: [0] the C−
+/// wave (from `left`), [1] the C+ wave (from `right`). `off` is how far the star's rapidity
+/// is from each wave's curve at its stretch (the secant's last mismatch, split in two: of
+/// the order of round-off).
+struct SameMaterialStar {
+  State state;
+  bool shock[2] = {false, false};
+  double off[2] = {0.0, 0.0};
+};
 
 /// The exact star state between two states of one material: ln s* where the C− curve
 /// through `left` meets the C+ curve through `right`, by secant steps from `guess` (the
 /// two-rarefaction star, within third order of the answer for weak waves). Every curve is
-/// closed form, so a weak interaction costs a few evaluations of the material.
-Solved<State> same_material_star(const Material& m, const State& left, const State& right, const State& guess);
+/// closed form, so a weak interaction costs a few evaluations of the material; the last
+/// evaluation is the answer (a mismatch at round-off ends the search without another).
+Solved<SameMaterialStar> same_material_star(const Material& m, const State& left, const State& right,
+                                            const State& guess);
 
 bool same_state(const State& a, const State& b);
 

@@ -78,23 +78,30 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   if (degenerate) {
     if (same_state(star, left) || same_state(star, right)) return false;  // a wave vanishes
   } else {
-    const Solved<State> exact_star = same_material_star(*m, left, right, star);
+    const Solved<SameMaterialStar> exact_star = same_material_star(*m, left, right, star);
     if (!exact_star.ok()) return false;
-    star = exact_star.value;
+    star = exact_star.value.state;
     held_strength = std::abs(wave_strength(*m, left, star, -1));
+    const bool shock[2] = {exact_star.value.shock[0], false};
+    bool right_shock = exact_star.value.shock[1];
+    double right_off = exact_star.value.off[1];
     if (held_strength < weak_merging_ && na.family == nb.family) {
       held_back = true;
       star = left;
+      // The C+ wave now joins `left` to `right`: its curve through `right` at left's stretch.
+      right_shock = wave_is_shock(*m, right, star.stretch, +1);
+      if (right_shock) {
+        const Solved<double> exact = hugoniot_rapidity(*m, right, star.stretch, +1);
+        if (!exact.ok()) return false;
+        right_off = std::abs(exact.value - star.rapidity);
+      }
     }
     for (int k = held_back ? 1 : 0; k < 2; ++k) {
-      const int family = k == 0 ? -1 : +1;
       const State& outer = k == 0 ? left : right;
       if (same_state(outer, star)) return false;
-      if (wave_is_shock(*m, outer, star.stretch, family)) {
+      if (k == 0 ? shock[0] : right_shock) {
         kinds[k] = FrontKind::shock;
-        const Solved<double> exact = hugoniot_rapidity(*m, outer, star.stretch, family);
-        if (!exact.ok()) return false;
-        off_hugoniot[k] = std::abs(exact.value - star.rapidity);
+        off_hugoniot[k] = k == 0 ? exact_star.value.off[0] : right_off;
         if (!(off_hugoniot[k] < weak_)) return false;
       } else {
         kinds[k] = FrontKind::rarefaction;
