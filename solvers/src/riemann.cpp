@@ -699,11 +699,7 @@ bool representable(Stretch s) { return std::abs(s.log()) < kRepresentableLogStre
 
 void require_solved(const RiemannSolution& sol, const Material& material, double t, double x, UnitSystem units) {
   // Every number in the scene's units, with its unit; speeds of an SI scene also as fractions of c.
-  const auto in_units = [units](double value, Dimension d) {
-    std::string text = shortest(from_natural(value, d, units)) + " " + std::string(unit_symbol(d, units));
-    if (d == Dimension::velocity && units == UnitSystem::si) text += " (" + shortest(value) + " c)";
-    return text;
-  };
+  const auto in_units = [units](double value, Dimension d) { return rigidity::in_units(value, d, units); };
   if (sol.status == Status::ok) {
     // A solution whose stretch or pressure double precision cannot carry (an impact at a
     // Lorentz factor of 1e40 compresses a soft gas to s = 1e-400) is a limit of the

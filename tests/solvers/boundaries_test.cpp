@@ -4,10 +4,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "error_bound.hpp"
 #include "exact/riemann.hpp"
+#include "rigidity/errors.hpp"
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/solve.hpp"
 
@@ -117,6 +119,59 @@ TEST(Piston, ALinearTableRampsTheVelocityBetweenRows) {
   const RunResult steps = ramp("step", 1e-2);
   EXPECT_EQ(probe_value(steps, 0.75, Quantity::p), 0.0);
   EXPECT_EQ(steps.bodies[0].x_left, 0.0);
+}
+
+/// A rigid bar of length 1 between a piston on the left and one on the right; tables as given.
+Scene squeezed_bar(const std::string& left_table, const std::string& right_table, double t_end,
+                   const std::string& method = "characteristics") {
+  return load_scene_string(R"(
+name: squeeze
+materials: {m: {model: rigid}}
+bodies: [{name: bar, material: m, length: 1.0, velocity: 0.0}]
+boundaries:
+  left: {type: piston, table: )" + left_table + R"(}
+  right: {type: piston, table: )" + right_table + R"(}
+solver: {method: )" + method + R"(}
+time: {end: )" + std::to_string(t_end) + "}\n",
+                           "<test>");
+}
+
+TEST(Piston, PistonsThatMeetAreRefusedBeforeAnythingRuns) {
+  // Pistons closing at 0.25 c each on a bar of length 1 meet at t = 1/0.5 = 2 in the middle:
+  // the bar would be crushed to zero length there (a rigid bar rings ever faster as the room
+  // closes; the pressure grows without bound). No classical solution reaches t = 3.
+  const Scene scene = squeezed_bar("[[0.0, 0.25]]", "[[0.0, -0.25]]", 3.0);
+  const std::optional<WallMeeting> meeting = walls_meet(scene);
+  ASSERT_TRUE(meeting.has_value());
+  EXPECT_NEAR(meeting->t, 2.0, 1e-14);
+  EXPECT_NEAR(meeting->x, 0.5, 1e-14);
+  for (const char* method : {"characteristics", "finite_volume"}) {
+    try {
+      (void)solve(squeezed_bar("[[0.0, 0.25]]", "[[0.0, -0.25]]", 3.0, method));
+      ADD_FAILURE() << method << ": pistons that meet at t = 2 ran to t = 3";
+    } catch (const InadmissibleError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("meet at t = 2 L/c, x = 0.5 L"), std::string::npos) << what;
+      EXPECT_NE(what.find("crush the bodies between them (1 L of natural length)"), std::string::npos) << what;
+    }
+  }
+  // Before they meet the scene is an ordinary one: the front from each piston carries
+  // p = (e^{2 artanh 0.25} − 1)/2 until the two meet in the middle at t = 1/2 (they run at
+  // c in the lab frame).
+  const RunResult r = solve(squeezed_bar("[[0.0, 0.25]]", "[[0.0, -0.25]]", 1.9));
+  EXPECT_EQ(r.status, "ok");
+  EXPECT_FALSE(walls_meet(squeezed_bar("[[0.0, 0.25]]", "[[0.0, -0.25]]", 1.9)).has_value());
+}
+
+TEST(Piston, WallsMeetOnTheLegWhereTheRoomCloses) {
+  // Left piston at 0.1 c until t = 1 (at x = 0.1), then 0.5 c: the fixed wall at x = 1 is
+  // reached at t = 1 + 0.9/0.5 = 2.8. A piston that turns back before meeting never does.
+  const std::optional<WallMeeting> meeting = walls_meet(squeezed_bar("[[0.0, 0.1], [1.0, 0.5]]", "[[0.0, 0.0]]", 5.0));
+  ASSERT_TRUE(meeting.has_value());
+  EXPECT_NEAR(meeting->t, 2.8, 1e-14);
+  EXPECT_NEAR(meeting->x, 1.0, 1e-14);
+  EXPECT_FALSE(walls_meet(squeezed_bar("[[0.0, 0.4], [1.0, -0.4]]", "[[0.0, 0.0]]", 50.0)).has_value());
+  EXPECT_FALSE(walls_meet(squeezed_bar("[[0.0, 0.1], [1.0, 0.5]]", "[[0.0, 0.0]]", 2.7)).has_value());
 }
 
 TEST(Interface, TwoMaterialsInOneBodyResolveExactlyAndStayBonded) {

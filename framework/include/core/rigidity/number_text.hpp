@@ -6,6 +6,8 @@
 #include <cmath>
 #include <string>
 
+#include "rigidity/units.hpp"
+
 namespace rigidity {
 
 [[nodiscard]] inline std::string shortest(double value) {
@@ -14,6 +16,14 @@ namespace rigidity {
   std::array<char, 32> digits{};
   const auto result = std::to_chars(digits.data(), digits.data() + digits.size(), value);
   return std::string(digits.data(), result.ptr);
+}
+
+/// A value given in natural units, written in the scene's units with its unit ("17.6 L/c",
+/// "3e-08 s"); a speed of an SI scene also as a fraction of c ("6000 m/s (2.0e-05 c)").
+[[nodiscard]] inline std::string in_units(double natural_value, Dimension d, UnitSystem u) {
+  std::string text = shortest(from_natural(natural_value, d, u)) + " " + std::string(unit_symbol(d, u));
+  if (d == Dimension::velocity && u == UnitSystem::si) text += " (" + shortest(natural_value) + " c)";
+  return text;
 }
 
 }  // namespace rigidity
