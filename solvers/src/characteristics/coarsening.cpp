@@ -276,6 +276,15 @@ void Tracker::merge_nearby(int id, double t) {
   if (m == nullptr || !m->linearly_degenerate()) return;
   const int f = nodes_[id].family;
   for (int direction : {+1, -1}) {
+    // A merge costs at least the weaker front's strength times the distance between the two.
+    // The weaker front of every pair cheap enough passes this test against its own nearest
+    // node on that side, and it looks for the stronger one when it meets something next;
+    // a front too strong for its nearest neighbour's distance need not look at all (most
+    // crossings, since fronts are far stronger than merge_ over their spacing).
+    const int adjacent = direction > 0 ? nodes_[id].next : nodes_[id].prev;
+    if (adjacent == kNone ||
+        nodes_[id].strength * std::abs(nodes_[adjacent].X_at(t) - nodes_[id].X_at(t)) > merge_)
+      continue;
     int n = id;
     for (int steps = 0; steps < kMergeReach; ++steps) {
       n = direction > 0 ? nodes_[n].next : nodes_[n].prev;

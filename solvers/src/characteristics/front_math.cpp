@@ -94,7 +94,7 @@ Solved<double> curve_rapidity(const Material& m, const State& outer, double psi_
 }
 
 Solved<SameMaterialStar> same_material_star(const Material& m, const State& left, const State& right,
-                                            const State& guess) {
+                                            const State& guess, double accept) {
   using Result = Solved<SameMaterialStar>;
   const double psi_left = m.riemann_psi(left.stretch), psi_right = m.riemann_psi(right.stretch);
   const double speed_left = characteristic_speed(m, left, -1), speed_right = characteristic_speed(m, right, +1);
@@ -109,7 +109,10 @@ Solved<SameMaterialStar> same_material_star(const Material& m, const State& left
     return std::isfinite(g);
   };
   // Round-off in the rapidities the curves give: below it, another step changes nothing.
-  const auto settled = [&](double g) { return std::abs(g) <= 4.0 * kEps * (1.0 + std::abs(star.state.rapidity)); };
+  const auto settled = [&](double g) {
+    star.converged = std::abs(g) <= 4.0 * kEps * (1.0 + std::abs(star.state.rapidity));
+    return star.converged || std::abs(g) <= accept;
+  };
   double z0 = guess.stretch.log(), g0 = 0.0;
   if (!mismatch(z0, g0)) return Result::failure(Status::not_converged);
   if (settled(g0)) return Result{star, Status::ok};
@@ -119,7 +122,11 @@ Solved<SameMaterialStar> same_material_star(const Material& m, const State& left
     const StretchRange range = m.admissible();
     if (!(z1 > range.log_min && z1 < range.log_max)) return Result::failure(Status::out_of_range);
     if (!mismatch(z1, g1)) return Result::failure(Status::not_converged);
-    if (settled(g1) || std::abs(z1 - z0) <= 2.0 * kEps * (1.0 + std::abs(z1))) return Result{star, Status::ok};
+    if (settled(g1)) return Result{star, Status::ok};
+    if (std::abs(z1 - z0) <= 2.0 * kEps * (1.0 + std::abs(z1))) {
+      star.converged = true;  // the stretch cannot move: what is left of g is the curves' round-off
+      return Result{star, Status::ok};
+    }
     if (g1 == g0) return Result::failure(Status::not_converged);
     const double z2 = z1 - g1 * (z1 - z0) / (g1 - g0);
     z0 = z1;

@@ -45,21 +45,24 @@ Solved<double> curve_rapidity(const Material& m, const State& outer, double psi_
 
 /// The star state of two states of one material, with what its two waves are: [0] the C−
 /// wave (from `left`), [1] the C+ wave (from `right`). `off` is how far the star's rapidity
-/// is from each wave's curve at its stretch (the secant's last mismatch, split in two: of
-/// the order of round-off).
+/// is from each wave's curve at its stretch (the secant's last mismatch, split in two);
+/// `converged`: that mismatch is at round-off.
 struct SameMaterialStar {
   State state;
   bool shock[2] = {false, false};
   double off[2] = {0.0, 0.0};
+  bool converged = false;
 };
 
 /// The exact star state between two states of one material: ln s* where the C− curve
 /// through `left` meets the C+ curve through `right`, by secant steps from `guess` (the
 /// two-rarefaction star, within third order of the answer for weak waves). Every curve is
 /// closed form, so a weak interaction costs a few evaluations of the material; the last
-/// evaluation is the answer (a mismatch at round-off ends the search without another).
+/// evaluation is the answer: the search ends at a mismatch at round-off, or at one below
+/// `accept` (a caller that books `off` as an error may take the guess of a weak crossing as
+/// it is).
 Solved<SameMaterialStar> same_material_star(const Material& m, const State& left, const State& right,
-                                            const State& guess);
+                                            const State& guess, double accept = 0.0);
 
 bool same_state(const State& a, const State& b);
 

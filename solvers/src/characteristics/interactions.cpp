@@ -70,42 +70,51 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   if (!star_stretch.ok() || !representable(star_stretch.value)) return false;  // resolved in full, and reported
   State star{0.5 * (j_plus + j_minus), star_stretch.value};
 
-  // The outgoing waves: kinds, and for shocks their distance from the exact Hugoniot.
+  // The outgoing waves: kinds, strengths, and how far each is from its wave curve.
   FrontKind kinds[2] = {FrontKind::contact, FrontKind::contact};
-  double off_hugoniot[2] = {0.0, 0.0};
+  double off_curve[2] = {0.0, 0.0};
   bool held_back = false;  // the C− wave, weaker than the threshold, is not emitted
-  double held_strength = 0.0;
+  // J− across the C− front, J+ across the C+ front (for a linearly degenerate material,
+  // those the fronts brought in, passed on).
+  double strength_minus = std::abs(j_minus - (left.rapidity - psi_left));
+  double strength_plus = std::abs(right.rapidity + psi_right - j_plus);
   if (degenerate) {
     if (same_state(star, left) || same_state(star, right)) return false;  // a wave vanishes
   } else {
-    const Solved<SameMaterialStar> exact_star = same_material_star(*m, left, right, star);
-    if (!exact_star.ok()) return false;
-    star = exact_star.value.state;
-    held_strength = std::abs(wave_strength(*m, left, star, -1));
-    const bool shock[2] = {exact_star.value.shock[0], false};
-    bool right_shock = exact_star.value.shock[1];
-    double right_off = exact_star.value.off[1];
-    if (held_strength < weak_merging_ && na.family == nb.family) {
+    // The star where the two wave curves meet, to round-off, or as soon as they miss each
+    // other by less than star_mismatch_ (then booked on both fronts like a shock held off
+    // its Hugoniot: a weak crossing often takes the two-rarefaction star as it is).
+    const Solved<SameMaterialStar> found = same_material_star(*m, left, right, star, star_mismatch_);
+    if (!found.ok()) return false;
+    star = found.value.state;
+    double psi_of_star = m->riemann_psi(star.stretch);
+    bool shock[2] = {found.value.shock[0], found.value.shock[1]};
+    for (int k = 0; k < 2; ++k) off_curve[k] = shock[k] || !found.value.converged ? found.value.off[k] : 0.0;
+    strength_minus = std::abs((star.rapidity - left.rapidity) - (psi_of_star - psi_left));
+    strength_plus = std::abs((right.rapidity - star.rapidity) + (psi_right - psi_of_star));
+    if (strength_minus < weak_merging_ && na.family == nb.family) {
       held_back = true;
       star = left;
+      psi_of_star = psi_left;
       // The C+ wave now joins `left` to `right`: its curve through `right` at left's stretch.
-      right_shock = wave_is_shock(*m, right, star.stretch, +1);
-      if (right_shock) {
+      shock[1] = wave_is_shock(*m, right, star.stretch, +1);
+      off_curve[1] = 0.0;
+      if (shock[1]) {
         const Solved<double> exact = hugoniot_rapidity(*m, right, star.stretch, +1);
         if (!exact.ok()) return false;
-        right_off = std::abs(exact.value - star.rapidity);
+        off_curve[1] = std::abs(exact.value - star.rapidity);
       }
+      strength_plus = std::abs((right.rapidity - left.rapidity) + (psi_right - psi_left));
     }
     for (int k = held_back ? 1 : 0; k < 2; ++k) {
       const State& outer = k == 0 ? left : right;
       if (same_state(outer, star)) return false;
-      if (k == 0 ? shock[0] : right_shock) {
+      if (shock[k]) {
         kinds[k] = FrontKind::shock;
-        off_hugoniot[k] = k == 0 ? exact_star.value.off[0] : right_off;
-        if (!(off_hugoniot[k] < weak_)) return false;
+        if (!(off_curve[k] < weak_)) return false;
       } else {
         kinds[k] = FrontKind::rarefaction;
-        const double span = std::abs(m->riemann_psi(star.stretch) - m->riemann_psi(outer.stretch));
+        const double span = std::abs(psi_of_star - (k == 0 ? psi_left : psi_right));
         if (span >= 2.0 * fan_step_) return false;  // a fan to split in steps
       }
     }
@@ -136,15 +145,14 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   record_segment(na, t);
   record_segment(nb, t);
   if (held_back) {
-    error_defects_ += held_strength * std::min(piece_length(na.piece),
+    error_defects_ += strength_minus * std::min(piece_length(na.piece),
                                                std::abs(characteristic_speed(*m, left, -1)) * (scene_.t_end - t));
     ++suppressed_;
     const int keep_before = na.prev;
     account_front_end(a, t);  // its shock books close while its neighbours are still its own
     link(keep_before, b);
     kill_node(a, t);
-    set_front(b, +1, kinds[1], *m, left, right, t, X, x, off_hugoniot[1], born[1],
-              std::abs(wave_strength(*m, left, right, +1)));
+    set_front(b, +1, kinds[1], *m, left, right, t, X, x, off_curve[1], born[1], strength_plus);
     schedule_meet(keep_before);
     schedule_meet(b);
     return true;
@@ -152,14 +160,8 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   account_front_end(a, t);
   account_front_end(b, t);
   result_.stats.fronts += 2;
-  // The strengths: J− across the C− front, J+ across the C+ front (for a linearly
-  // degenerate material, those the fronts brought in, passed on).
-  const double strength_minus =
-      degenerate ? std::abs(j_minus - (left.rapidity - psi_left)) : std::abs(wave_strength(*m, left, star, -1));
-  const double strength_plus =
-      degenerate ? std::abs(right.rapidity + psi_right - j_plus) : std::abs(wave_strength(*m, star, right, +1));
-  set_front(a, -1, kinds[0], *m, left, star, t, X, x, off_hugoniot[0], born[0], strength_minus);
-  set_front(b, +1, kinds[1], *m, star, right, t, X, x, off_hugoniot[1], born[1], strength_plus);
+  set_front(a, -1, kinds[0], *m, left, star, t, X, x, off_curve[0], born[0], strength_minus);
+  set_front(b, +1, kinds[1], *m, star, right, t, X, x, off_curve[1], born[1], strength_plus);
   na.right.state = star;
   schedule_meet(na.prev);
   schedule_meet(a);

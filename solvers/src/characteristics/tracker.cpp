@@ -106,6 +106,8 @@ RunResult Tracker::run() {
   const double tolerance = scene_.solver.tolerance;
   merge_base_ = merge_ = kMergeFraction * tolerance * tolerance * total_length_;
   weak_merging_ = 0.5 * tolerance * tolerance;
+  star_mismatch_ = kStarMismatch * tolerance * tolerance;
+  dissipation_precision_ = kDissipationPrecision * tolerance;
   front_cap_ =
       static_cast<double>(scene_.bodies.size()) * std::max(kMinFrontsPerBody, kFrontsPerBody / scene_.solver.tolerance);
   weak_ = 0.5 * scene_.solver.tolerance / std::max(1, places);

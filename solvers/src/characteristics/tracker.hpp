@@ -53,6 +53,15 @@ constexpr double kMinPiecesPerBody = 8.0;
 constexpr double kMergeCeiling = 1e4;
 /// Growth of an L1 error between the time it is made and t_end allowed for in the bound.
 constexpr double kStability = 2.0;
+/// A crossing in a genuinely nonlinear body may leave its star this far (× tolerance², in
+/// rapidity) from its waves' curves, booked on both fronts as they move on: the crossings of
+/// a run at the front cap then book a small fraction of its budget, and most weak crossings
+/// take the two-rarefaction star with one evaluation of the curves. At the default tolerance
+/// it is below round-off: exact.
+constexpr double kStarMismatch = 1e-3;
+/// Relative precision of a shock's dissipation the energy books ask for, × tolerance: the
+/// direct difference of energies where its round-off allows, Gauss–Legendre otherwise.
+constexpr double kDissipationPrecision = 1.0;
 /// How many fronts of the other family a merge of two fronts of one family may reach across.
 constexpr int kMergeReach = 8;
 
@@ -265,6 +274,8 @@ class Tracker {
   // ---- the error budget (see README "What the tolerance means") --------------------
   double weak_ = 0.0;           ///< strength |ΔJ| below which an interface or contact emits no wave
   double weak_merging_ = 0.0;   ///< strength below which two fronts of one family merging emit no reflection
+  double star_mismatch_ = 0.0;  ///< kStarMismatch × tolerance²
+  double dissipation_precision_ = 0.0;  ///< kDissipationPrecision × tolerance
   double total_length_ = 1.0;   ///< natural length of all bodies: the error bound is per unit of it
   double error_defects_ = 0.0;  ///< L1 error of waves held back at interfaces and contacts
   double error_fans_ = 0.0;     ///< L1 error of fan steps whose fans are gone

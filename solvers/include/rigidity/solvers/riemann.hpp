@@ -162,8 +162,12 @@ inline constexpr double kRepresentableLogStretch = 690.0;
 ///   D = m ([p] δτ − [v] δM),   δf = ∫₀¹ f dθ − (f₀ + f₁)/2 = ∫₀¹ (½ − θ) f'(θ) dθ,
 /// along the straight path from left to right in (p, v), with τ = s(p)/γ(v), M = h(p) γ(v) v,
 /// h = (e + p) s, dh/dp = s (from dE = −p dτ + v dM and the jump conditions). Strong shocks
-/// (|ln(s_r/s_l)| > 0.3) use the difference directly. Fails only if a stretch on the path
-/// cannot be found.
-[[nodiscard]] Solved<double> shock_dissipation_rate(const Material& material, const State& left, const State& right);
+/// (|ln(s_r/s_l)| > 0.3) use the difference directly, and so does any shock where the
+/// difference's round-off, 8 ε (|m| (|E_l| + |E_r|) + |p_l v_l| + |p_r v_r|), is below
+/// `relative_precision` × |D| (0: never): a front tracker at a coarse tolerance asks for
+/// only the digits its books need, at a fraction of the cost. Fails only if a stretch on the
+/// path cannot be found.
+[[nodiscard]] Solved<double> shock_dissipation_rate(const Material& material, const State& left, const State& right,
+                                                    double relative_precision = 0.0);
 
 }  // namespace rigidity
