@@ -97,7 +97,9 @@ void print_summary(std::ostream& out, const Scene& scene, const RunResult& resul
   const std::string method = result.solver.empty() ? std::string("?") : result.solver;
   out << "solver: " << method << (numbers.empty() ? "" : " (" + join(numbers, ", ") + ")") << "; "
       << result.stats.fronts << " fronts, " << result.stats.interactions << " interactions, solved in "
-      << number(result.stats.wall_time_s, 3) << " s\n";
+      << number(result.stats.wall_time_s, 3) << " s"
+      << (result.stats.sampling_time_s >= 0.001 ? " (outputs sampled in " + number(result.stats.sampling_time_s, 3) + " s)" : "")
+      << "\n";
 
   long total_events = 0;
   std::vector<std::string> counts;

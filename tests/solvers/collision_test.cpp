@@ -114,6 +114,35 @@ TEST(Collision, FlyerPlateSpallsInTheRigidFluidButNotInTheRigidSolid) {
   }
 }
 
+TEST(Collision, ASnapshotOfAPartedBodyFindsWhatAProbeAtEachLabelFinds) {
+  // Snapshots are filled by one walk along a body's pieces and nodes; probes look each
+  // label up alone. After the rigid-fluid target has parted, every probe label on the
+  // snapshot's grid (its ends, either side of the crack) must read the same p, v and x.
+  const std::string labels[] = {"0.0", "0.25", "0.5", "0.745", "1.0"};
+  std::string outputs = "outputs:\n  snapshots: [{times: [1.5, 3.0], samples: 201, quantities: [p, v, x]}]\n  probes:\n";
+  for (const std::string& X : labels)
+    outputs += "    - {name: p" + std::to_string(outputs.size()) + ", body: target, at: " + X +
+               ", quantities: [p, v, x], every: 1.5}\n";
+  Scene scene;
+  const RunResult r = run_yaml(flyer_plate("rigid_fluid") + outputs, &scene);
+  ASSERT_GE(count_events(r, "cavitation"), 1u);
+  int target = -1;
+  for (std::size_t b = 0; b < r.body_names.size(); ++b) target = r.body_names[b] == "target" ? static_cast<int>(b) : target;
+  ASSERT_GE(target, 0);
+  int compared = 0;
+  for (const ProbeSample& probe : r.probes) {
+    if (probe.t == 0.0) continue;
+    const double X = scene.outputs.probes[static_cast<std::size_t>(probe.probe)].X;
+    const auto same = std::find_if(r.snapshots.begin(), r.snapshots.end(), [&](const SnapshotSample& s) {
+      return s.t == probe.t && s.body == target && std::abs(s.X - X) < 1e-12 && s.quantity == probe.quantity;
+    });
+    ASSERT_NE(same, r.snapshots.end()) << "X = " << X << " t = " << probe.t;
+    EXPECT_EQ(same->value, probe.value) << "X = " << X << " t = " << probe.t;
+    ++compared;
+  }
+  EXPECT_EQ(compared, 2 * 5 * 3);
+}
+
 std::string cradle(double tolerance) {
   // A flyer of length 1e-4 knocks a piece as long as itself off the target's free rear
   // face (Newton's cradle: the release waves from both rear faces meet 1e-4 inside it, and

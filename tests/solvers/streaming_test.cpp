@@ -56,7 +56,7 @@ std::vector<std::string> entries(const fs::path& dir) {
 
 /// summary.json without the one line that differs between two runs of a scene.
 std::string without_wall_time(const std::string& summary) {
-  return std::regex_replace(summary, std::regex(R"("wall_time_s": [^\n]*)"), "\"wall_time_s\": -");
+  return std::regex_replace(summary, std::regex(R"("(wall|sampling)_time_s": [^\n]*)"), "\"$1_time_s\": -");
 }
 
 /// Every number of every data row of a CSV file is finite (no "nan", "inf").

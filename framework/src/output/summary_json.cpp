@@ -144,6 +144,7 @@ std::string summary_json(const Scene& scene, const RunResult& result) {
   json.key("fronts").integer(result.stats.fronts);
   json.key("interactions").integer(result.stats.interactions);
   json.key("wall_time_s").number(result.stats.wall_time_s);
+  json.key("sampling_time_s").number(result.stats.sampling_time_s);
   json.end_object();
 
   w.units();

@@ -467,6 +467,7 @@ std::optional<double> figure(const std::string& path, const Scene& scene, const 
     if (parts[1] == "fronts") value = static_cast<double>(result.stats.fronts);
     if (parts[1] == "interactions") value = static_cast<double>(result.stats.interactions);
     if (parts[1] == "wall_time_s") value = result.stats.wall_time_s;
+    if (parts[1] == "sampling_time_s") value = result.stats.sampling_time_s;
   } else if (parts[0] == "conservation") {
     const Conservation& c = result.conservation;
     const Dimension E = Dimension::energy_per_area, P = Dimension::momentum_per_area;

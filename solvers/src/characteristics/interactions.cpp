@@ -32,15 +32,16 @@ void Tracker::schedule_meet(int a) {
 }
 
 /// Two fronts of one material meeting with nothing else there, done in place: they leave
-/// as a C− front (in a's node) and a C+ front (in b's node) around the star state of the
-/// two-rarefaction solver, J+ from the left state and J− from the right one. For a linearly
-/// degenerate material that star is exact. For a genuinely nonlinear one it misses the exact
-/// star by the jump of the other invariant across the shocks, third order in their strength:
-/// it is used when that jump, computed from the closed-form Hugoniot, is below the weak-wave
-/// threshold, and the front carries it as an error rate for as long as it lives; a C− wave
-/// left weaker than the threshold by two fronts of one family merging is held back (its
-/// strength times the length it could sweep is booked). Returns false (doing nothing) when
-/// the full Riemann problem is needed: a crowd, a strong shock, a fan to split, cavitation.
+/// as a C− front (in a's node) and a C+ front (in b's node) around the star state, J+ from
+/// the left state and J− from the right one. For a linearly degenerate material that
+/// two-rarefaction star is exact. For a genuinely nonlinear one the star is where the two
+/// wave curves meet (Hugoniot for a shock, integral curve for a fan step), found from that
+/// guess by secant steps to round-off, or until they miss each other by less than
+/// star_mismatch_; each front carries what its state misses its curve by as an error rate
+/// for as long as it lives. A C− wave left weaker than the threshold by two fronts of one
+/// family merging is held back (its strength times the length it could sweep is booked).
+/// Returns false (doing nothing) when the full Riemann problem is needed: a crowd, a strong
+/// shock, a fan to split, cavitation.
 bool Tracker::interact_in_place(int a, int b, double t) {
   if (result_.stats.interactions >= scene_.solver.max_interactions) return false;  // resolve_group reports it
   Node& na = nodes_[a];

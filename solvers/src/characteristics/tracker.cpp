@@ -251,7 +251,8 @@ RunResult Tracker::run() {
     result_.warnings.push_back("rarefaction fans were split into at most " + std::to_string(kMaxFanSteps) +
                                " steps: coarser than solver.tolerance = " + number(scene_.solver.tolerance));
   }
-  result_.stats.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result_.stats.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - result_.stats.sampling_time_s;
   return result_;
 }
 

@@ -2,6 +2,7 @@
 /// What both solvers share to fill a scene's outputs: when to sample, and the value of
 /// an output quantity in a uniform state.
 
+#include <chrono>
 #include <limits>
 #include <vector>
 
@@ -46,6 +47,20 @@ class SampleSchedule {
   double t_end_;
   std::vector<Stream> probes_, snapshots_;
   SampleTime next_{kNever, SampleTime::Kind::probe, -1};
+};
+
+/// Adds the time its scope takes to `total` [s]: what filling the outputs costs, reported
+/// apart from solving (RunStats::sampling_time_s).
+class SamplingTimer {
+ public:
+  explicit SamplingTimer(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~SamplingTimer() { total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+  SamplingTimer(const SamplingTimer&) = delete;
+  SamplingTimer& operator=(const SamplingTimer&) = delete;
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_;
 };
 
 /// Index of the body a probe samples (the loader has checked that it exists).
