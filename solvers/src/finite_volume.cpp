@@ -126,6 +126,10 @@ class Scheme {
   void recover(double t);
   /// Lab positions of the two sides of junction j (walls or body ends).
   void side_positions(int j, double& x_left, double& x_right) const;
+  /// Of cell k (global index): the fraction of its lab width that holds no material.
+  [[nodiscard]] double void_fraction(int k) const;
+  /// Appends body b at t_end to the result: whole, or as its pieces if it holds void inside.
+  void list_pieces(int b);
   /// The sides of junction j touch (a gap within round-off, or none).
   [[nodiscard]] bool sides_touch(int j) const;
   /// After a step from t_start to t_end: contacts made and lost, with their events.
@@ -578,12 +582,80 @@ void Scheme::recover(double t) {
       if (!cavitation_warned_) {
         result_.warnings.push_back(
             "finite_volume: cells that would go into tension beyond the cavitation pressure are clamped there and "
-            "hold void; a body that cavitates is reported whole, not as pieces (the characteristics solver parts it)");
+            "hold void; a body with void inside at t_end is listed as its pieces, cut in the middle of its most void "
+            "cell (to within a cell of where the characteristics solver parts it)");
         cavitation_warned_ = true;
       }
     }
     bodies_[b].cavitated = clamped[b];
   }
+}
+
+double Scheme::void_fraction(int k) const {
+  return 1.0 - state_[k].stretch.value() / std::cosh(state_[k].rapidity) / u_[k][0];
+}
+
+void Scheme::list_pieces(int b) {
+  const Body& body = bodies_[b];
+  const int end = body.first + body.count;
+  // A body that holds void inside at t_end (cells clamped at the parting stretch, with
+  // material on both sides) has parted: it is listed as its pieces, each run of void cut
+  // in its most void cell, whose material goes half to each side. Void at an end is a
+  // free surface pulling away, not a crack.
+  std::vector<int> cuts;
+  for (int k = body.first; k < end;) {
+    if (!(void_fraction(k) > kVoidFraction)) {
+      ++k;
+      continue;
+    }
+    int most = k, after = k;
+    for (; after < end && void_fraction(after) > kVoidFraction; ++after)
+      if (void_fraction(after) > void_fraction(most)) most = after;
+    if (k > body.first && after < end) cuts.push_back(most);
+    k = after;
+  }
+  // A piece's lab length is that of its material (the void is the gap between pieces): the
+  // first is measured from the body's left end, every other one back from its right end
+  // (the body's right end, or the middle of the material of the cell it is cut in).
+  BodyResult r;
+  double mass = 0.0, mass_velocity = 0.0, material_length = 0.0;
+  const auto add = [&](int k, double share) {
+    const double w = share * width_[k];
+    const double rest_mass = material_[k]->rest_density() * w;
+    mass += rest_mass;
+    mass_velocity += rest_mass * std::tanh(state_[k].rapidity);
+    material_length += w * label_density(state_[k]);
+    r.energy += w * energy_density(*material_[k], state_[k]);
+    r.momentum += w * u_[k][1];
+    const EnergyParts parts = energy_parts(*material_[k], state_[k]);
+    r.kinetic_energy += w * parts.kinetic;
+    r.internal_energy += w * parts.internal;
+    r.rest_energy += w * parts.rest;
+  };
+  const auto close = [&](double x_right, std::size_t number) {
+    r.name = scene_.bodies[b].name + (cuts.empty() ? "" : "." + std::to_string(number));
+    r.x_left = number == 1 ? body.x_left : x_right - material_length;
+    r.x_right = number == 1 && !cuts.empty() ? body.x_left + material_length : x_right;
+    r.velocity_mean = mass > 0.0 ? mass_velocity / mass : 0.0;
+    result_.bodies.push_back(r);
+    r = BodyResult{};
+    mass = mass_velocity = material_length = 0.0;
+  };
+  double x = body.x_left;  // left face of cell k
+  std::size_t next_cut = 0;
+  for (int k = body.first; k < end; ++k) {
+    const double cell = u_[k][0] * width_[k];
+    if (next_cut < cuts.size() && cuts[next_cut] == k) {
+      add(k, 0.5);
+      close(x + 0.5 * width_[k] * label_density(state_[k]), next_cut + 1);
+      add(k, 0.5);
+      ++next_cut;
+    } else {
+      add(k, 1.0);
+    }
+    x += cell;
+  }
+  close(body.x_right, cuts.size() + 1);
 }
 
 void Scheme::side_positions(int j, double& x_left, double& x_right) const {
@@ -805,27 +877,7 @@ RunResult Scheme::run() {
   c.wall_work = wall_work_;
   c.energy_dissipated = c.energy_initial + c.wall_work - c.energy_final;
 
-  for (std::size_t b = 0; b < bodies_.size(); ++b) {
-    const Body& body = bodies_[b];
-    BodyResult r;
-    r.name = scene_.bodies[b].name;
-    r.x_left = body.x_left;
-    r.x_right = body.x_right;
-    double mass = 0.0, mass_velocity = 0.0;
-    for (int k = body.first; k < body.first + body.count; ++k) {
-      const double rest_mass = material_[k]->rest_density() * width_[k];
-      mass += rest_mass;
-      mass_velocity += rest_mass * std::tanh(state_[k].rapidity);
-      r.energy += width_[k] * energy_density(*material_[k], state_[k]);
-      r.momentum += width_[k] * u_[k][1];
-      const EnergyParts parts = energy_parts(*material_[k], state_[k]);
-      r.kinetic_energy += width_[k] * parts.kinetic;
-      r.internal_energy += width_[k] * parts.internal;
-      r.rest_energy += width_[k] * parts.rest;
-    }
-    r.velocity_mean = mass > 0.0 ? mass_velocity / mass : 0.0;
-    result_.bodies.push_back(r);
-  }
+  for (std::size_t b = 0; b < bodies_.size(); ++b) list_pieces(static_cast<int>(b));
   result_.solver_numbers = {{"cells", static_cast<double>(scene_.solver.cells)},
                             {"cells_total", static_cast<double>(state_.size())},
                             {"order", static_cast<double>(order_)},
