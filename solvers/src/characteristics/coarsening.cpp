@@ -275,21 +275,18 @@ void Tracker::merge_nearby(int id, double t) {
   const Material* m = nodes_[id].right.material;
   if (m == nullptr || !m->linearly_degenerate()) return;
   const int f = nodes_[id].family;
+  const double X = nodes_[id].X_at(t), strength = nodes_[id].strength;
   for (int direction : {+1, -1}) {
-    // A merge costs at least the weaker front's strength times the distance between the two.
-    // The weaker front of every pair cheap enough passes this test against its own nearest
-    // node on that side, and it looks for the stronger one when it meets something next;
-    // a front too strong for its nearest neighbour's distance need not look at all (most
-    // crossings, since fronts are far stronger than merge_ over their spacing).
-    const int adjacent = direction > 0 ? nodes_[id].next : nodes_[id].prev;
-    if (adjacent == kNone ||
-        nodes_[id].strength * std::abs(nodes_[adjacent].X_at(t) - nodes_[id].X_at(t)) > merge_)
-      continue;
     int n = id;
     for (int steps = 0; steps < kMergeReach; ++steps) {
       n = direction > 0 ? nodes_[n].next : nodes_[n].prev;
       if (n == kNone || nodes_[n].kind != NodeKind::front || nodes_[n].right.material != m) break;
       if (direction < 0 && nodes_[nodes_[n].prev].right.material != m) break;
+      // A merge costs at least the weaker front's strength times the distance between the
+      // two. Where this front times the distance already exceeds what a merge may cost, a
+      // cheap pair needs the other front to be the weaker one, and that front looks for
+      // this one when it next meets something: the walk stops (most crossings stop here).
+      if (strength * std::abs(nodes_[n].X_at(t) - X) > merge_) break;
       if (nodes_[n].family != f) continue;
       if (direction > 0 ? merge_across(id, n, t) : merge_across(n, id, t)) return;
       break;

@@ -168,10 +168,16 @@ RunResult Tracker::run() {
       pop_event();
       handle(e);
     } else {
+      // A crossing done in place reschedules (or removes) the meeting it was, which moves
+      // the entry down from the top once instead of removing it and inserting another.
       const MeetingQueue::Entry m = meetings_.top();
-
-      meetings_.erase(m.node);
-      if (!interact_in_place(m.node, nodes_[m.node].next, m.t)) resolve(m.node, nodes_[m.node].next, m.t);
+      if (interact_in_place(m.node, nodes_[m.node].next, m.t)) {
+        if (!meetings_.empty() && meetings_.top().node == m.node && meetings_.top().seq == m.seq)
+          meetings_.erase(m.node);
+      } else {
+        meetings_.erase(m.node);
+        resolve(m.node, nodes_[m.node].next, m.t);
+      }
     }
   }
   const double t_end = recorder_.stopped() ? recorder_.t_reached() : scene_.t_end;
