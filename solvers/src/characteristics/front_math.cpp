@@ -17,12 +17,25 @@ double wave_strength(const Material& m, const State& a, const State& b, int fami
 }
 
 FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b, int family) {
-  const double ca = std::cosh(a.rapidity);
+  // cosh and sinh of φa from e^φa − 1 (no cancellation: sinh = u (u + 2) / (2 (1 + u))), and
+  // sinh(φb − φa) = 2 sinh h cosh h, sinh((φa + φb)/2) = sinh(φa + h) from those of h = (φb − φa)/2:
+  // four evaluations of the exponential where seven hyperbolic functions were.
+  double cosh_a = 0.0, sinh_a = 0.0;
+  if (std::abs(a.rapidity) < 300.0) {
+    const double u = std::expm1(a.rapidity);
+    cosh_a = 0.5 * (1.0 + u + 1.0 / (1.0 + u));
+    sinh_a = 0.5 * u * (u + 2.0) / (1.0 + u);
+  } else {
+    cosh_a = std::cosh(a.rapidity);
+    sinh_a = std::sinh(a.rapidity);
+  }
   const double half = 0.5 * (b.rapidity - a.rapidity);
-  const double denominator = a.stretch.value() * (std::expm1(b.stretch.log() - a.stretch.log()) * ca -
-                                                  2.0 * std::sinh(0.5 * (a.rapidity + b.rapidity)) * std::sinh(half));
-  const double speed = -std::sinh(b.rapidity - a.rapidity) / denominator;
-  const double lab = std::tanh(a.rapidity) + speed * a.stretch.value() / ca;
+  const double sh = std::sinh(half), ch = std::sqrt(1.0 + sh * sh);
+  const double s_a = a.stretch.value();
+  const double denominator =
+      s_a * (std::expm1(b.stretch.log() - a.stretch.log()) * cosh_a - 2.0 * (sinh_a * ch + cosh_a * sh) * sh);
+  const double speed = -2.0 * sh * ch / denominator;
+  const double lab = (sinh_a + speed * s_a) / cosh_a;
   // A coarse step (or a jump held off its curve) can give a speed against its family's
   // direction or beyond light: it then moves at the mean characteristic speed instead.
   if (!std::isfinite(speed) || denominator == 0.0 || !(family * speed > 0.0) || !(std::abs(lab) < 1.0)) {
