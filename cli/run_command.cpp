@@ -98,7 +98,9 @@ void print_summary(std::ostream& out, const Scene& scene, const RunResult& resul
   out << "solver: " << method << (numbers.empty() ? "" : " (" + join(numbers, ", ") + ")") << "; "
       << result.stats.fronts << " fronts, " << result.stats.interactions << " interactions, solved in "
       << number(result.stats.wall_time_s, 3) << " s"
-      << (result.stats.sampling_time_s >= 0.001 ? " (outputs sampled in " + number(result.stats.sampling_time_s, 3) + " s)" : "")
+      << (result.stats.sampling_time_s >= 0.001
+              ? " (outputs sampled in " + number(result.stats.sampling_time_s, 3) + " s)"
+              : "")
       << "\n";
 
   long total_events = 0;

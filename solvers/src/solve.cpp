@@ -26,7 +26,8 @@ WallLeg wall_leg(const BoundaryDecl& wall, double t) {
   if (wall.type != BoundaryType::piston || motion.times.empty()) return {0.0, std::numeric_limits<double>::infinity()};
   const auto after = std::upper_bound(motion.times.begin(), motion.times.end(), t);
   const std::size_t k = static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, after - motion.times.begin() - 1));
-  return {std::tanh(motion.rapidities[k]), after == motion.times.end() ? std::numeric_limits<double>::infinity() : *after};
+  return {std::tanh(motion.rapidities[k]),
+          after == motion.times.end() ? std::numeric_limits<double>::infinity() : *after};
 }
 
 }  // namespace
@@ -62,8 +63,8 @@ RunResult solve(const Scene& scene, RunRecorder& recorder) {
         std::string("no classical solution up to time.end = ") + in_units(scene.t_end, Dimension::time, scene.units) +
         ": the left " + wall(scene.left) + " and the right " + wall(scene.right) +
         " meet at t = " + in_units(meeting->t, Dimension::time, scene.units) +
-        ", x = " + in_units(meeting->x, Dimension::length, scene.units) + ", and would crush the bodies between them (" +
-        in_units(length, Dimension::length, scene.units) +
+        ", x = " + in_units(meeting->x, Dimension::length, scene.units) +
+        ", and would crush the bodies between them (" + in_units(length, Dimension::length, scene.units) +
         " of natural length) to zero length there; end the run before they meet (time.end below " +
         in_units(meeting->t, Dimension::time, scene.units) + ")");
   }

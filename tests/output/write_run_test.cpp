@@ -157,7 +157,8 @@ TEST_F(WriteRun, SummaryHasTheLayoutOfTheSpec) {
     EXPECT_TRUE(conservation.has(key)) << key;
   EXPECT_EQ(conservation["wall_impulse"].number, -1.5);
 
-  EXPECT_EQ(doc["stats"].keys(), (std::vector<std::string>{"fronts", "interactions", "wall_time_s", "sampling_time_s"}));
+  EXPECT_EQ(doc["stats"].keys(),
+            (std::vector<std::string>{"fronts", "interactions", "wall_time_s", "sampling_time_s"}));
   EXPECT_EQ(doc["stats"]["fronts"].number, 3.0);
   EXPECT_EQ(doc["units"]["system"].string, "natural");
   EXPECT_EQ(doc["units"]["velocity"].string, "c");

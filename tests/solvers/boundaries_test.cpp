@@ -129,10 +129,13 @@ name: squeeze
 materials: {m: {model: rigid}}
 bodies: [{name: bar, material: m, length: 1.0, velocity: 0.0}]
 boundaries:
-  left: {type: piston, table: )" + left_table + R"(}
-  right: {type: piston, table: )" + right_table + R"(}
+  left: {type: piston, table: )" +
+                               left_table + R"(}
+  right: {type: piston, table: )" +
+                               right_table + R"(}
 solver: {method: )" + method + R"(}
-time: {end: )" + std::to_string(t_end) + "}\n",
+time: {end: )" + std::to_string(t_end) +
+                               "}\n",
                            "<test>");
 }
 

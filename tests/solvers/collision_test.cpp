@@ -119,7 +119,8 @@ TEST(Collision, ASnapshotOfAPartedBodyFindsWhatAProbeAtEachLabelFinds) {
   // label up alone. After the rigid-fluid target has parted, every probe label on the
   // snapshot's grid (its ends, either side of the crack) must read the same p, v and x.
   const std::string labels[] = {"0.0", "0.25", "0.5", "0.745", "1.0"};
-  std::string outputs = "outputs:\n  snapshots: [{times: [1.5, 3.0], samples: 201, quantities: [p, v, x]}]\n  probes:\n";
+  std::string outputs =
+      "outputs:\n  snapshots: [{times: [1.5, 3.0], samples: 201, quantities: [p, v, x]}]\n  probes:\n";
   for (const std::string& X : labels)
     outputs += "    - {name: p" + std::to_string(outputs.size()) + ", body: target, at: " + X +
                ", quantities: [p, v, x], every: 1.5}\n";
@@ -127,7 +128,8 @@ TEST(Collision, ASnapshotOfAPartedBodyFindsWhatAProbeAtEachLabelFinds) {
   const RunResult r = run_yaml(flyer_plate("rigid_fluid") + outputs, &scene);
   ASSERT_GE(count_events(r, "cavitation"), 1u);
   int target = -1;
-  for (std::size_t b = 0; b < r.body_names.size(); ++b) target = r.body_names[b] == "target" ? static_cast<int>(b) : target;
+  for (std::size_t b = 0; b < r.body_names.size(); ++b)
+    target = r.body_names[b] == "target" ? static_cast<int>(b) : target;
   ASSERT_GE(target, 0);
   int compared = 0;
   for (const ProbeSample& probe : r.probes) {

@@ -31,7 +31,8 @@ struct SceneShape {
   double min_end = 1.0, max_end = 4.0;
   double tolerance = kTolerance;
   std::string budgets = ", max_fronts: 20000, max_interactions: 20000";
-  std::string outputs = "outputs:\n  snapshots: [{times: [0.5, 1.0], quantities: [s, p, v, x], samples: 21}]\n  fronts: true\n";
+  std::string outputs =
+      "outputs:\n  snapshots: [{times: [0.5, 1.0], quantities: [s, p, v, x], samples: 21}]\n  fronts: true\n";
 };
 
 class SceneGenerator {
@@ -68,8 +69,8 @@ class SceneGenerator {
       x += lab_length + (coin() ? 0.0 : uniform(0.0, 0.5));
     }
     y << "boundaries:\n  left: " << boundary(0.0 - (coin() ? 0.0 : 0.3)) << "\n  right: " << boundary(x + 0.2) << "\n";
-    y << "solver: {tolerance: " << shape_.tolerance << shape_.budgets << "}\ntime: {end: "
-      << uniform(shape_.min_end, shape_.max_end) << "}\n";
+    y << "solver: {tolerance: " << shape_.tolerance << shape_.budgets
+      << "}\ntime: {end: " << uniform(shape_.min_end, shape_.max_end) << "}\n";
     y << shape_.outputs;
     return y.str();
   }
@@ -240,8 +241,8 @@ TEST(RandomScenes, LongMultiBodyRunsFinishWithBoundedFronts) {
     EXPECT_LE(solver_number(r, "fronts_alive_max"), 2.0 * cap);
     const Conservation& c = r.conservation;
     const double scale = c.energy_initial + std::abs(c.wall_work);
-    const double books = solver_number(r, "error_bound") == 0.0 ? kRoundOff * scale
-                                                                 : certified_books_tolerance(scene, r, scale);
+    const double books =
+        solver_number(r, "error_bound") == 0.0 ? kRoundOff * scale : certified_books_tolerance(scene, r, scale);
     EXPECT_LE(c.energy_final, c.energy_initial + c.wall_work + books);
     EXPECT_NEAR(c.momentum_final - c.momentum_initial, c.wall_impulse, books);
     for (const ProbeSample& sample : r.probes) ASSERT_TRUE(std::isfinite(sample.value));

@@ -147,7 +147,7 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   record_segment(nb, t);
   if (held_back) {
     error_defects_ += strength_minus * std::min(piece_length(na.piece),
-                                               std::abs(characteristic_speed(*m, left, -1)) * (scene_.t_end - t));
+                                                std::abs(characteristic_speed(*m, left, -1)) * (scene_.t_end - t));
     ++suppressed_;
     const int keep_before = na.prev;
     account_front_end(a, t);  // its shock books close while its neighbours are still its own

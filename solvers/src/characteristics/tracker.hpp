@@ -272,16 +272,16 @@ class Tracker {
   double fan_step_ = 1e-12;
   bool fan_capped_ = false;
   // ---- the error budget (see README "What the tolerance means") --------------------
-  double weak_ = 0.0;           ///< strength |ΔJ| below which an interface or contact emits no wave
-  double weak_merging_ = 0.0;   ///< strength below which two fronts of one family merging emit no reflection
-  double star_mismatch_ = 0.0;  ///< kStarMismatch × tolerance²
+  double weak_ = 0.0;                   ///< strength |ΔJ| below which an interface or contact emits no wave
+  double weak_merging_ = 0.0;           ///< strength below which two fronts of one family merging emit no reflection
+  double star_mismatch_ = 0.0;          ///< kStarMismatch × tolerance²
   double dissipation_precision_ = 0.0;  ///< kDissipationPrecision × tolerance
-  double total_length_ = 1.0;   ///< natural length of all bodies: the error bound is per unit of it
-  double error_defects_ = 0.0;  ///< L1 error of waves held back at interfaces and contacts
-  double error_fans_ = 0.0;     ///< L1 error of fan steps whose fans are gone
-  long suppressed_ = 0;         ///< weak waves held back
-  double merge_base_ = 0.0;     ///< largest L1 error (strength × distance) of a merge while fronts are few
-  double merge_ = 0.0;          ///< the same now: raised while the live fronts exceed front_cap_
+  double total_length_ = 1.0;           ///< natural length of all bodies: the error bound is per unit of it
+  double error_defects_ = 0.0;          ///< L1 error of waves held back at interfaces and contacts
+  double error_fans_ = 0.0;             ///< L1 error of fan steps whose fans are gone
+  long suppressed_ = 0;                 ///< weak waves held back
+  double merge_base_ = 0.0;             ///< largest L1 error (strength × distance) of a merge while fronts are few
+  double merge_ = 0.0;                  ///< the same now: raised while the live fronts exceed front_cap_
   double front_cap_ = 0.0;
   /// A solution that grows rough (a pulse scattered by many contacts into more and more
   /// waves) cannot be held to a fixed L1 error by a bounded number of fronts. Work is bounded

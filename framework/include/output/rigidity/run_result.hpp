@@ -44,8 +44,8 @@ struct Conservation {
 };
 
 struct RunStats {
-  long fronts = 0;           ///< fronts created over the run
-  long interactions = 0;     ///< Riemann problems solved
+  long fronts = 0;               ///< fronts created over the run
+  long interactions = 0;         ///< Riemann problems solved
   double wall_time_s = 0.0;      ///< solving only: parsing, sampling and writing apart
   double sampling_time_s = 0.0;  ///< evaluating probes and snapshots and handing them to the recorder
 };
