@@ -26,7 +26,7 @@ const Checked* Checked::find(std::string_view key) const {
 
 const Checked& Checked::operator[](std::string_view key) const {
   if (const Checked* e = find(key)) return *e;
-  throw std::logic_error("scene loader: '" + dotted(path) + "' has no field '" + std::string(key) + "'");
+  throw std::logic_error("scene loader: '" + path + "' has no field '" + std::string(key) + "'");
 }
 
 Checked& Checked::operator[](std::string_view key) {
@@ -46,10 +46,8 @@ void Checked::put(Checked field) {
 
 namespace {
 
-Path child_path(const Path& path, const std::string& name) {
-  Path out = path;
-  out.push_back(name);
-  return out;
+std::string child_path(const std::string& path, const std::string& name) {
+  return path.empty() ? name : path + "." + name;
 }
 
 bool is_scalar_kind(Kind k) { return k != Kind::list && k != Kind::tuple && k != Kind::map && k != Kind::dictionary; }
@@ -142,9 +140,10 @@ void Checker::wrong_type(const YAML::Node& node, const Checked& at, const std::s
   fail(at, "must be " + expected + ", got " + describe_value(node));
 }
 
-Checked Checker::check(const YAML::Node& node, const Key& key, const Path& path, const YAML::Mark& key_mark) {
+Checked Checker::check(const YAML::Node& node, const Key& key, const std::string& path, const YAML::Mark& key_mark) {
   Checked out;
-  out.name = path.empty() ? std::string() : path.back();
+  const std::size_t dot = path.rfind('.');
+  out.name = dot == std::string::npos ? path : path.substr(dot + 1);
   out.path = path;
   out.kind = key.kind;
   out.dimension = key.dimension;
@@ -263,7 +262,7 @@ Checked Checker::check_list(const YAML::Node& node, const Key& key, Checked out)
   return out;
 }
 
-std::vector<Checker::Entry> Checker::entries_of(const YAML::Node& map, const Path& path) const {
+std::vector<Checker::Entry> Checker::entries_of(const YAML::Node& map, const std::string& path) const {
   std::vector<Entry> entries;
   std::map<std::string, int> first_line;
   for (auto it = map.begin(); it != map.end(); ++it) {
@@ -320,7 +319,7 @@ Checked Checker::check_map(const YAML::Node& node, const Key& key, Checked out) 
   for (const Key* declared : keys) {
     const Key& k = *declared;
     const OneOf* group = group_of(key, k.name);
-    const Path path = child_path(out.path, k.name);
+    const std::string path = child_path(out.path, k.name);
     if (const Entry* e = given(k.name)) {
       if (k.only_if && !holds(*k.only_if, out))
         sources_.fail(path, e->key.Mark(), "'" + k.name + "' " + condition_text(*k.only_if, out), true);
@@ -453,7 +452,7 @@ std::size_t flow_width(const Checked& c, int depth = 0) {
 /// list all in the same style.
 void emit(YAML::Emitter& out, const Checked& c, int depth, bool may_flow = true) {
   constexpr std::size_t kFlowWidth = 72;
-  if (c.awaiting) throw std::logic_error("scene loader: no value derived for '" + dotted(c.path) + "'");
+  if (c.awaiting) throw std::logic_error("scene loader: no value derived for '" + c.path + "'");
   if (is_scalar_kind(c.kind)) {
     const std::string text = scalar_text(c);
     if (c.kind == Kind::text && needs_quotes(text)) out << YAML::DoubleQuoted;

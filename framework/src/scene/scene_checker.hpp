@@ -18,7 +18,8 @@ namespace rigidity::detail {
 /// A value that passed its key's rules.
 struct Checked {
   std::string name;  ///< the key, or the list index
-  Path path;
+  std::string path;  ///< dotted, "bodies.0.velocity": one string, not one per component (a scene of 10⁵ segments holds
+                     ///< 10⁶ values)
   schema::Kind kind = schema::Kind::map;
   Dimension dimension = Dimension::dimensionless;
   YAML::Mark mark;               ///< of the value; for a default, of the enclosing map
@@ -46,7 +47,7 @@ class Checker {
   Checker(const Sources& sources, UnitSystem units) : sources_(sources), units_(units) {}
 
   /// Checks `node` (the value at `path`, whose key sits at `key_mark`) against `key`. \throws InputError
-  [[nodiscard]] Checked check(const YAML::Node& node, const schema::Key& key, const Path& path,
+  [[nodiscard]] Checked check(const YAML::Node& node, const schema::Key& key, const std::string& path,
                               const YAML::Mark& key_mark);
 
   /// A value derived by the loader, in natural units, as a default field of `parent`.
@@ -72,7 +73,7 @@ class Checker {
   /// The value of an absent key that is neither required nor derived: its default.
   Checked absent(const schema::Key& key, const Checked& parent);
 
-  [[nodiscard]] std::vector<Entry> entries_of(const YAML::Node& map, const Path& path) const;
+  [[nodiscard]] std::vector<Entry> entries_of(const YAML::Node& map, const std::string& path) const;
   [[noreturn]] void wrong_type(const YAML::Node& node, const Checked& at, const std::string& expected) const;
 
   const Sources& sources_;

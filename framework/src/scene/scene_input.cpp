@@ -13,6 +13,17 @@ namespace rigidity::detail {
 
 std::string dotted(const Path& path) { return join(path, "."); }
 
+Path split_dotted(std::string_view dotted) {
+  Path path;
+  if (dotted.empty()) return path;
+  for (std::size_t start = 0;;) {
+    const std::size_t dot = dotted.find('.', start);
+    path.emplace_back(dotted.substr(start, dot - start));
+    if (dot == std::string_view::npos) return path;
+    start = dot + 1;
+  }
+}
+
 // ---- locations ----------------------------------------------------------------------
 
 namespace {
@@ -44,6 +55,16 @@ SourceLocation Sources::locate(const Path& path, const YAML::Mark& mark, bool at
 
 void Sources::fail(const Path& path, const YAML::Mark& mark, const std::string& message, bool at_key) const {
   throw InputError(locate(path, mark, at_key), dotted(path), message);
+}
+
+SourceLocation Sources::locate(const std::string& dotted_path, const YAML::Mark& mark, bool at_key) const {
+  if (overrides_.empty()) return locate(Path{}, mark, at_key);  // the path only matters for overrides
+  return locate(split_dotted(dotted_path), mark, at_key);
+}
+
+void Sources::fail(const std::string& dotted_path, const YAML::Mark& mark, const std::string& message,
+                   bool at_key) const {
+  throw InputError(locate(dotted_path, mark, at_key), dotted_path, message);
 }
 
 // ---- --set overrides ------------------------------------------------------------------

@@ -17,6 +17,8 @@ using Path = std::vector<std::string>;
 
 /// "bodies.0.velocity"
 [[nodiscard]] std::string dotted(const Path& path);
+/// The components of a dotted path (keys are plain names and list indices: no dots).
+[[nodiscard]] Path split_dotted(std::string_view dotted);
 
 /// Where the values of a scene came from: the file, and the `--set` overrides that
 /// replaced parts of it. `--set` arguments are the lines of a virtual file "<--set>":
@@ -29,9 +31,14 @@ class Sources {
 
   /// The location of the value (or, with at_key, of the key) at `path` whose YAML mark is `mark`.
   [[nodiscard]] SourceLocation locate(const Path& path, const YAML::Mark& mark, bool at_key = false) const;
+  /// The same for a dotted path (split only where `--set` overrides are to be matched).
+  [[nodiscard]] SourceLocation locate(const std::string& dotted_path, const YAML::Mark& mark,
+                                      bool at_key = false) const;
 
   /// \throws InputError at `path`, keyed by its dotted form.
   [[noreturn]] void fail(const Path& path, const YAML::Mark& mark, const std::string& message,
+                         bool at_key = false) const;
+  [[noreturn]] void fail(const std::string& dotted_path, const YAML::Mark& mark, const std::string& message,
                          bool at_key = false) const;
 
   /// Parses "key.path=value" and applies it to `root`; later overrides win. \throws InputError

@@ -354,8 +354,7 @@ bool load_listed_plugins(const YAML::Node& root, const schema::Key& schema, cons
     Checker checker(sources, UnitSystem::natural);
     const Checked plugins = checker.check(it->second, *schema.field("plugins"), {"plugins"}, it->first.Mark());
     std::vector<PluginReference> references;
-    for (const Checked& p : plugins.entries)
-      references.push_back({p.word, detail::dotted(p.path), sources.locate(p.path, p.mark)});
+    for (const Checked& p : plugins.entries) references.push_back({p.word, p.path, sources.locate(p.path, p.mark)});
     load_scene_plugins(references, directory);
     return !references.empty();
   }
