@@ -197,6 +197,21 @@ TEST_F(SweepTest, BadSweepFileNamesTheKey) {
   outcome = rigidity("sweep figure.yaml");
   EXPECT_EQ(outcome.exit_status, 2);
   EXPECT_TRUE(contains(outcome.err, "figure.yaml:3:14: error: key 'collect.p'"));
+
+  // stats and conservation have fixed fields: a misspelt one is refused, not an empty column.
+  write_file("stats.yaml",
+             "parameters:\n  bodies.0.velocity: {values: [0.5]}\ncollect: {time: stats.sampling_time, "
+             "e: conservation.energy_dissipated}\n");
+  outcome = rigidity("sweep stats.yaml");
+  EXPECT_EQ(outcome.exit_status, 2);
+  EXPECT_TRUE(contains(outcome.err, "key 'collect.time'"));
+  EXPECT_TRUE(contains(outcome.err, "did you mean 'sampling_time_s'?"));
+  write_file("books.yaml",
+             "parameters:\n  bodies.0.velocity: {values: [0.5]}\ncollect: {e: conservation.energy_lost}\n");
+  outcome = rigidity("sweep books.yaml");
+  EXPECT_EQ(outcome.exit_status, 2);
+  EXPECT_TRUE(contains(outcome.err, "unknown conservation field 'energy_lost'"));
+  EXPECT_FALSE(fs::exists(dir() / "out"));
 }
 
 // ---- the cases a sweep file lays out (library API) ------------------------------------

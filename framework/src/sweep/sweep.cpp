@@ -340,6 +340,17 @@ Sweep load_sweep_file(const std::string& path) {
               "conservation.X, stats.X)");
         if ((parts[0] == "t_end") != (parts.size() == 1)) bad("not a scalar of summary.json");
         if (parts[0] != "t_end" && parts.size() != 2) bad("not a scalar of summary.json");
+        // stats and conservation have fixed fields; the solver's depend on its method.
+        static const std::vector<std::string> stats = {"fronts", "interactions", "wall_time_s", "sampling_time_s"};
+        static const std::vector<std::string> conservation = {
+            "energy_initial", "energy_final", "energy_dissipated", "wall_work",        "momentum_initial",
+            "momentum_final", "wall_impulse", "energy_droplets",   "momentum_droplets"};
+        const std::vector<std::string>* fields = parts[0] == "stats"          ? &stats
+                                                 : parts[0] == "conservation" ? &conservation
+                                                                              : nullptr;
+        if (fields != nullptr && std::find(fields->begin(), fields->end(), parts[1]) == fields->end())
+          bad("unknown " + parts[0] + " field '" + parts[1] + "'; did you mean '" + closest_match(parts[1], *fields) +
+              "'?");
       }
       sweep.collect.push_back(SweepCollect{name, p});
     }
