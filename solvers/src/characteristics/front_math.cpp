@@ -10,6 +10,18 @@ namespace rigidity::characteristics {
 
 namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+struct Hyperbolic {
+  double cosh = 1.0, sinh = 0.0;
+};
+
+/// cosh φ and sinh φ from one exponential: with u = e^φ − 1, sinh φ = u (u + 2) / (2 (1 + u))
+/// has no cancellation near 0; beyond |φ| = 300 (where e^φ nears overflow) the library's.
+Hyperbolic hyperbolic(double phi) {
+  if (!(std::abs(phi) < 300.0)) return {std::cosh(phi), std::sinh(phi)};
+  const double u = std::expm1(phi);
+  return {0.5 * (1.0 + u + 1.0 / (1.0 + u)), 0.5 * u * (u + 2.0) / (1.0 + u)};
+}
 }  // namespace
 
 double wave_strength(const Material& m, const State& a, const State& b, int family) {
@@ -17,18 +29,11 @@ double wave_strength(const Material& m, const State& a, const State& b, int fami
 }
 
 FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b, int family) {
-  // cosh and sinh of φa from e^φa − 1 (no cancellation: sinh = u (u + 2) / (2 (1 + u))), and
-  // sinh(φb − φa) = 2 sinh h cosh h, sinh((φa + φb)/2) = sinh(φa + h) from those of h = (φb − φa)/2:
-  // four evaluations of the exponential where seven hyperbolic functions were.
-  double cosh_a = 0.0, sinh_a = 0.0;
-  if (std::abs(a.rapidity) < 300.0) {
-    const double u = std::expm1(a.rapidity);
-    cosh_a = 0.5 * (1.0 + u + 1.0 / (1.0 + u));
-    sinh_a = 0.5 * u * (u + 2.0) / (1.0 + u);
-  } else {
-    cosh_a = std::cosh(a.rapidity);
-    sinh_a = std::sinh(a.rapidity);
-  }
+  // cosh and sinh of φa from one exponential, and sinh(φb − φa) = 2 sinh h cosh h,
+  // sinh((φa + φb)/2) = sinh(φa + h) from those of h = (φb − φa)/2: four evaluations of the
+  // exponential where seven hyperbolic functions were.
+  const Hyperbolic at_a = hyperbolic(a.rapidity);
+  const double cosh_a = at_a.cosh, sinh_a = at_a.sinh;
   const double half = 0.5 * (b.rapidity - a.rapidity);
   const double sh = std::sinh(half), ch = std::sqrt(1.0 + sh * sh);
   const double s_a = a.stretch.value();
@@ -66,15 +71,20 @@ Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch 
   double phi = outer.rapidity + direction * relative;
 
   // The lab frame: g(φ) = [p][τ] + [v][M] = 0 with τ = s/cosh φ, v = tanh φ, M = w s sinh φ.
-  const double phi0 = outer.rapidity, ch0 = std::cosh(phi0);
-  const double tau0 = s0 / ch0, momentum0 = (m.enthalpy_density(outer.stretch)) * s0 * std::sinh(phi0);
+  const double phi0 = outer.rapidity;
+  const Hyperbolic at_outer = hyperbolic(phi0);
+  const double ch0 = at_outer.cosh;
+  const double tau0 = s0 / ch0, momentum0 = (m.enthalpy_density(outer.stretch)) * s0 * at_outer.sinh;
   const double log_ratio = star.log() - outer.stretch.log();
   for (int step = 0; step < 8; ++step) {
-    const double ch = std::cosh(phi), sh = std::sinh(phi);
-    // cosh φ0 / cosh φ − 1 = 2 sinh((φ0 + φ)/2) sinh((φ0 − φ)/2) / cosh φ
-    const double cosh_ratio = std::log1p(2.0 * std::sinh(0.5 * (phi0 + phi)) * std::sinh(0.5 * (phi0 - phi)) / ch);
+    const Hyperbolic at_phi = hyperbolic(phi);
+    const double ch = at_phi.cosh, sh = at_phi.sinh;
+    // With d = (φ0 − φ)/2: cosh φ0 / cosh φ − 1 = 2 sinh(φ + d) sinh d / cosh φ, and
+    // sinh(φ − φ0) = −2 sinh d cosh d, each without cancellation.
+    const double sd = std::sinh(0.5 * (phi0 - phi)), cd = std::sqrt(1.0 + sd * sd);
+    const double cosh_ratio = std::log1p(2.0 * (sh * cd + ch * sd) * sd / ch);
     const double dtau = tau0 * std::expm1(log_ratio + cosh_ratio);
-    const double dv = std::sinh(phi - phi0) / (ch0 * ch);
+    const double dv = -2.0 * sd * cd / (ch0 * ch);
     const double dm = w * s * sh - momentum0;
     const double g = dp * dtau + dv * dm;
     const double slope = -dp * s * sh / (ch * ch) + dm / (ch * ch) + dv * w * s * ch;
