@@ -824,6 +824,7 @@ Solved<double> shock_dissipation_rate(const Material& m, const State& left, cons
   // small; a weaker one the same way when the digits that difference keeps are enough.
   const bool strong = std::abs(right.stretch.log() - left.stretch.log()) > 0.3;
   if (strong || relative_precision > 0.0) {
+    // energy_density of both states, from the pressures and cosh φ already at hand.
     const double s_r = right.stretch.value();
     const double E_l = m.enthalpy_density(left.stretch) * s_l * ch_l - p_l * s_l / ch_l;
     const double E_r = m.enthalpy_density(right.stretch) * s_r * ch_r - p_r * s_r / ch_r;

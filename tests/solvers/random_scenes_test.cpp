@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -107,34 +108,60 @@ class SceneGenerator {
 /// (measured: 2e-15).
 constexpr double kRoundOff = 1e-12;
 
+/// A generated scene and its run.
+struct GeneratedRun {
+  Scene scene;
+  RunResult result;
+};
+
+/// Loads and solves the generated scene `index`; nothing for a scene the loader refuses (a
+/// wall inside a body, a piston placed at a body's end: counted in `refused`) or one without
+/// a classical solution (a Hooke collision faster than V, walls that meet: `inadmissible`).
+/// A numerical failure is a test failure. RIGIDITY_TRACE_RANDOM=N prints scene N.
+std::optional<GeneratedRun> run_generated(const std::string& yaml, int index, int& refused, int& inadmissible) {
+  GeneratedRun run;
+  try {
+    run.scene = load_scene_string(yaml, "<random>");
+  } catch (const InputError&) {
+    ++refused;
+    return std::nullopt;
+  }
+  const char* trace = std::getenv("RIGIDITY_TRACE_RANDOM");
+  if (trace != nullptr) {
+    std::fprintf(stderr, "scene %d\n", index);
+    if (std::atoi(trace) == index) std::fprintf(stderr, "%s", yaml.c_str());
+  }
+  try {
+    run.result = solve(run.scene);
+  } catch (const InadmissibleError& e) {
+    if (trace != nullptr) std::fprintf(stderr, "inadmissible %d: %s\n", index, e.what());
+    ++inadmissible;
+    return std::nullopt;
+  } catch (const NumericalError& e) {
+    ADD_FAILURE() << "scene " << index << ": " << e.what();
+    return std::nullopt;
+  }
+  return run;
+}
+
+/// What the energy and momentum books of a run may miss: round-off where it certifies no
+/// error, else what its bound allows.
+double books_tolerance(const Scene& scene, const RunResult& r) {
+  const Conservation& c = r.conservation;
+  const double scale = c.energy_initial + std::abs(c.wall_work);
+  return solver_number(r, "error_bound") == 0.0 ? kRoundOff * scale : certified_books_tolerance(scene, r, scale);
+}
+
 TEST(RandomScenes, KeepEveryPhysicalProperty) {
   SceneGenerator generator(20261121u);
-  int solved = 0, inadmissible = 0, over_budget = 0;
+  int solved = 0, refused = 0, inadmissible = 0, over_budget = 0;
   for (int i = 0; i < 200; ++i) {
     const std::string yaml = generator.next(i);
     SCOPED_TRACE(yaml);
-    Scene scene;
-    try {
-      scene = load_scene_string(yaml, "<random>");
-    } catch (const InputError&) {
-      // Pistons placed at a body's end or walls inside a body are legitimately refused.
-      continue;
-    }
-    if (const char* trace = std::getenv("RIGIDITY_TRACE_RANDOM")) {
-      std::fprintf(stderr, "scene %d\n", i);
-      if (std::atoi(trace) == i) std::fprintf(stderr, "%s", yaml.c_str());
-    }
-    RunResult r;
-    try {
-      r = solve(scene);
-    } catch (const InadmissibleError& e) {
-      if (std::getenv("RIGIDITY_TRACE_RANDOM")) std::fprintf(stderr, "inadmissible %d: %s\n", i, e.what());
-      ++inadmissible;  // a hooke collision faster than V: no classical solution
-      continue;
-    } catch (const NumericalError& e) {
-      ADD_FAILURE() << "scene " << i << ": " << e.what();
-      continue;
-    }
+    std::optional<GeneratedRun> run = run_generated(yaml, i, refused, inadmissible);
+    if (!run) continue;
+    const Scene& scene = run->scene;
+    const RunResult& r = run->result;
     // A fragmenting rigid fluid or a cascade of fan steps beyond the budget stops
     // cleanly: everything up to the time reached must hold the same properties.
     if (r.status == "stopped") {
@@ -149,7 +176,6 @@ TEST(RandomScenes, KeepEveryPhysicalProperty) {
     for (double value : {c.energy_initial, c.energy_final, c.energy_dissipated, c.momentum_initial, c.momentum_final,
                          c.wall_impulse, c.wall_work})
       ASSERT_TRUE(std::isfinite(value));
-    const double scale = c.energy_initial + std::abs(c.wall_work);
     // Energy is never created: only walls' work adds it, shocks remove it; momentum changes
     // only by the walls' impulse. A run that certifies no error (every wave tracked exactly,
     // every jump condition met) closes its books to round-off, and a linearly degenerate one
@@ -160,7 +186,7 @@ TEST(RandomScenes, KeepEveryPhysicalProperty) {
       EXPECT_EQ(c.energy_dissipated, 0.0);
     }
     const bool exact = solver_number(r, "error_bound") == 0.0;
-    const double books = exact ? kRoundOff * scale : certified_books_tolerance(scene, r, scale);
+    const double books = books_tolerance(scene, r);
     EXPECT_LE(c.energy_final, c.energy_initial + c.wall_work + books);
     if (exact && linearly_degenerate(scene)) {
       EXPECT_NEAR(c.energy_final - c.energy_initial, c.wall_work, books);
@@ -197,6 +223,7 @@ TEST(RandomScenes, KeepEveryPhysicalProperty) {
   }
   EXPECT_GT(solved, 120);
   RecordProperty("solved", solved);
+  RecordProperty("refused", refused);
   RecordProperty("inadmissible", inadmissible);
   RecordProperty("over_budget", over_budget);
   EXPECT_LT(over_budget, 20);
@@ -221,28 +248,16 @@ TEST(RandomScenes, LongMultiBodyRunsFinishWithBoundedFronts) {
   for (int i = 0; i < 40; ++i) {
     const std::string yaml = generator.next(i);
     SCOPED_TRACE(yaml);
-    Scene scene;
-    try {
-      scene = load_scene_string(yaml, "<random>");
-    } catch (const InputError&) {
-      ++refused;  // a wall inside a body, a piston placed at a body's end
-      continue;
-    }
-    RunResult r;
-    try {
-      r = solve(scene);
-    } catch (const InadmissibleError&) {
-      ++inadmissible;
-      continue;
-    }
+    std::optional<GeneratedRun> run = run_generated(yaml, i, refused, inadmissible);
+    if (!run) continue;
+    const Scene& scene = run->scene;
+    const RunResult& r = run->result;
     ASSERT_EQ(r.status, "ok") << r.stop_reason;
     ++finished;
     const double cap = static_cast<double>(scene.bodies.size()) * std::max(100.0, 0.5 / shape.tolerance);
     EXPECT_LE(solver_number(r, "fronts_alive_max"), 2.0 * cap);
     const Conservation& c = r.conservation;
-    const double scale = c.energy_initial + std::abs(c.wall_work);
-    const double books =
-        solver_number(r, "error_bound") == 0.0 ? kRoundOff * scale : certified_books_tolerance(scene, r, scale);
+    const double books = books_tolerance(scene, r);
     EXPECT_LE(c.energy_final, c.energy_initial + c.wall_work + books);
     EXPECT_NEAR(c.momentum_final - c.momentum_initial, c.wall_impulse, books);
     for (const ProbeSample& sample : r.probes) ASSERT_TRUE(std::isfinite(sample.value));
