@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -104,13 +105,10 @@ RunResult Tracker::run() {
   // (as fan steps, their number grows as 1/tolerance): what each may cost falls as its square,
   // so that their sum falls with the tolerance.
   const double tolerance = scene_.solver.tolerance;
-  merge_base_ = merge_ = kMergeFraction * tolerance * tolerance * total_length_;
-  weak_merging_ = 0.5 * tolerance * tolerance;
   star_mismatch_ = kStarMismatch * tolerance * tolerance;
   dissipation_precision_ = kDissipationPrecision * tolerance;
-  front_cap_ =
-      static_cast<double>(scene_.bodies.size()) * std::max(kMinFrontsPerBody, kFrontsPerBody / scene_.solver.tolerance);
-  weak_ = 0.5 * scene_.solver.tolerance / std::max(1, places);
+  places_ = std::max(1, places);
+  set_resolution(tolerance);
   piece_cap_ = std::max(kMinPiecesPerBody, kPiecesPerBody / tolerance);
   totals(0.0, result_.conservation.energy_initial, result_.conservation.momentum_initial);
 
@@ -149,7 +147,8 @@ RunResult Tracker::run() {
   // exceeded), so a crossing of the bodies by the waves costs at most about front_cap_²/4
   // interactions and the interactions grow linearly with time.end. Fans alone need about
   // (their span in Ψ)/tolerance steps: a genuinely nonlinear body costs ~1/tolerance² per
-  // crossing.
+  // crossing. A spray whose droplets book more than the tolerance coarsens all this to its
+  // own level (rebalance): its cost per crossing then no longer grows as the tolerance falls.
   for (;;) {
     while (!queue_.empty() && !valid(queue_.front())) pop_event();
     // The earliest of the next rare event and the next meeting (ties in the order scheduled).
@@ -216,6 +215,20 @@ RunResult Tracker::run() {
   result_.solver_numbers.emplace_back("droplets", static_cast<double>(droplets_));
   result_.solver_numbers.emplace_back("error_droplets", error_droplets_ / total_length_);
   result_.solver_numbers.emplace_back("fronts_alive_max", static_cast<double>(live_fronts_max_));
+  result_.solver_numbers.emplace_back("wave_resolution", resolution_);
+  if (resolution_ > scene_.solver.tolerance) {
+    const auto two_digits = [](double v) {
+      std::ostringstream os;
+      os.precision(2);
+      os << v;
+      return os.str();
+    };
+    result_.warnings.push_back("a spray of droplets booked " +
+                               two_digits(kStability * error_droplets_ / total_length_) +
+                               " of the error bound, more than solver.tolerance = " + number(scene_.solver.tolerance) +
+                               " allows: the waves were resolved to " + two_digits(resolution_) +
+                               " once they did (finer waves would leave the bound where the droplets put it)");
+  }
   Conservation& c = result_.conservation;
   totals(t_end, c.energy_final, c.momentum_final);
   c.wall_impulse = impulse_;

@@ -62,6 +62,9 @@ constexpr double kStarMismatch = 1e-3;
 /// Relative precision of a shock's dissipation the energy books ask for, × tolerance: the
 /// direct difference of energies where its round-off allows, Gauss–Legendre otherwise.
 constexpr double kDissipationPrecision = 1.0;
+/// Waves are resolved to this fraction of the droplets' share of the bound where that share
+/// exceeds the tolerance (see Tracker::rebalance).
+constexpr double kDropletBalance = 0.1;
 /// How many fronts of the other family a merge of two fronts of one family may reach across.
 constexpr int kMergeReach = 8;
 
@@ -283,6 +286,30 @@ class Tracker {
   double merge_base_ = 0.0;             ///< largest L1 error (strength × distance) of a merge while fronts are few
   double merge_ = 0.0;                  ///< the same now: raised while the live fronts exceed front_cap_
   double front_cap_ = 0.0;
+  /// The thresholds that set how finely the waves are resolved: the tolerance, unless the
+  /// droplets of a spray have booked more than it (see rebalance).
+  int places_ = 1;  ///< interfaces and contacts among which weak_ shares its budget
+  double resolution_ = 0.0;
+  void set_resolution(double r) {
+    resolution_ = r;
+    merge_base_ = kMergeFraction * r * r * total_length_;
+    merge_ = std::max(merge_, merge_base_);
+    weak_merging_ = 0.5 * r * r;
+    weak_ = 0.5 * r / places_;
+    fan_step_ = kFanStepPerTolerance * r;
+    front_cap_ = static_cast<double>(scene_.bodies.size()) * std::max(kMinFrontsPerBody, kFrontsPerBody / r);
+  }
+  /// A spray's droplets (a chaotic sequence of collisions that knock pieces off) book an
+  /// error that does not fall with the tolerance. Once their share of the bound exceeds
+  /// the tolerance, resolving the waves to the tolerance buys no smaller bound at a cost
+  /// that grows as 1/tolerance²: waves and droplets are resolved to kDropletBalance × that
+  /// share from then on, no coarser than where the front cap reaches its floor (0.005).
+  void rebalance() {
+    const double droplets = kStability * error_droplets_ / total_length_;
+    const double r =
+        std::max(scene_.solver.tolerance, std::min(kFrontsPerBody / kMinFrontsPerBody, kDropletBalance * droplets));
+    if (r > 1.01 * resolution_) set_resolution(r);
+  }
   /// A solution that grows rough (a pulse scattered by many contacts into more and more
   /// waves) cannot be held to a fixed L1 error by a bounded number of fronts. Work is bounded
   /// first: while more fronts live than front_cap_, the cost a merge may have grows by 1 %
@@ -307,7 +334,7 @@ class Tracker {
   std::vector<double> droplet_scale_;
   double piece_cap_ = 0.0;
   void steer_droplets(int body) {
-    const double max_scale = 0.5 / (piece_cap_ * scene_.solver.tolerance);
+    const double max_scale = 0.5 / (piece_cap_ * resolution_);
     if (body_pieces_[body] > piece_cap_) {
       droplet_scale_[body] = std::min(droplet_scale_[body] * 1.02, std::max(1.0, max_scale));
     } else if (droplet_scale_[body] > 1.0 && body_pieces_[body] < 0.5 * piece_cap_) {
