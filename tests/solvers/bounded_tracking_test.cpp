@@ -238,22 +238,25 @@ TEST(Spray, ARigidFluidSprayFinishesWithFewPiecesConsistentGeometryAndClosedBook
 
 TEST(Spray, ASprayWhoseDropletsOutgrowTheToleranceIsResolvedToTheirLevel) {
   // At tolerance 1e-4 the spray's droplets soon book more than the tolerance, and keep
-  // doing so (the spray is chaotic): resolving its waves to 1e-4 would cost ~1/tolerance²
-  // per crossing (24× the interactions of tolerance 1e-3 when it did) for a bound the
-  // droplets hold at ~0.1-0.4 either way. The run resolves waves and droplets to a tenth of
-  // the droplets' share (no coarser than 0.005), says so, and its books still close.
+  // doing so (the spray is chaotic: at 1e-3 they book more still). Resolving its waves to
+  // 1e-4 would cost ~1/tolerance² per crossing (24× the interactions of tolerance 1e-3
+  // when it did) for a bound the droplets hold up anyway. The run coarsens waves and
+  // droplets while the waves have booked less than half what the droplets have, says so,
+  // and its books still close. (That the bound holds at all is tested on scenes whose
+  // truth is known; a spray's truth is not.)
   const SceneRun fine = run(kSpray, 1e-4, 20.0);
   const SceneRun coarse = run(kSpray, 1e-3, 20.0);
   ASSERT_EQ(fine.result.status, "ok");
   const double resolution = solver_number(fine.result, "wave_resolution");
   EXPECT_GT(resolution, 1e-4);
   EXPECT_LE(resolution, 0.005 * (1.0 + 1e-12));
-  // It is a tenth of the droplets' share of the bound, where that share left it.
-  const double droplets_share = 2.0 * solver_number(fine.result, "error_droplets");
-  EXPECT_LE(resolution, std::min(0.005, 0.1 * droplets_share) * (1.0 + 1e-12));
   bool warned = false;
-  for (const std::string& w : fine.result.warnings) warned = warned || w.find("resolved to") != std::string::npos;
+  for (const std::string& w : fine.result.warnings)
+    warned = warned || w.find("more coarsely than solver.tolerance") != std::string::npos;
   EXPECT_TRUE(warned) << "a coarser resolution than the tolerance must be reported";
+  // The waves' share follows the droplets': it stays below theirs.
+  EXPECT_LT(solver_number(fine.result, "error_merges") + solver_number(fine.result, "error_fans"),
+            solver_number(fine.result, "error_droplets"));
   EXPECT_LT(static_cast<double>(fine.result.stats.interactions),
             15.0 * static_cast<double>(coarse.result.stats.interactions));
   const Conservation& c = fine.result.conservation;

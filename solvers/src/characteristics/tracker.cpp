@@ -215,19 +215,19 @@ RunResult Tracker::run() {
   result_.solver_numbers.emplace_back("droplets", static_cast<double>(droplets_));
   result_.solver_numbers.emplace_back("error_droplets", error_droplets_ / total_length_);
   result_.solver_numbers.emplace_back("fronts_alive_max", static_cast<double>(live_fronts_max_));
-  result_.solver_numbers.emplace_back("wave_resolution", resolution_);
-  if (resolution_ > scene_.solver.tolerance) {
+  result_.solver_numbers.emplace_back("wave_resolution", coarsest_resolution_);
+  if (coarsest_resolution_ > scene_.solver.tolerance) {
     const auto two_digits = [](double v) {
       std::ostringstream os;
       os.precision(2);
       os << v;
       return os.str();
     };
-    result_.warnings.push_back("a spray of droplets booked " +
+    result_.warnings.push_back("the droplets of a spray booked " +
                                two_digits(kStability * error_droplets_ / total_length_) +
-                               " of the error bound, more than solver.tolerance = " + number(scene_.solver.tolerance) +
-                               " allows: the waves were resolved to " + two_digits(resolution_) +
-                               " once they did (finer waves would leave the bound where the droplets put it)");
+                               " of the error bound, which no tolerance reduces: while they dominated, waves and "
+                               "droplets were resolved more coarsely than solver.tolerance = " +
+                               number(scene_.solver.tolerance) + ", at most to " + two_digits(coarsest_resolution_));
   }
   Conservation& c = result_.conservation;
   totals(t_end, c.energy_final, c.momentum_final);

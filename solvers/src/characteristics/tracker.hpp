@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <string>
@@ -62,9 +63,10 @@ constexpr double kStarMismatch = 1e-3;
 /// Relative precision of a shock's dissipation the energy books ask for, × tolerance: the
 /// direct difference of energies where its round-off allows, Gauss–Legendre otherwise.
 constexpr double kDissipationPrecision = 1.0;
-/// Waves are resolved to this fraction of the droplets' share of the bound where that share
-/// exceeds the tolerance (see Tracker::rebalance).
-constexpr double kDropletBalance = 0.1;
+/// A spray's waves may book up to this fraction of what its droplets book before their
+/// resolution stops coarsening, by kResolutionStep per droplet (see Tracker::rebalance).
+constexpr double kDropletBalance = 0.5;
+constexpr double kResolutionStep = 1.1;
 /// How many fronts of the other family a merge of two fronts of one family may reach across.
 constexpr int kMergeReach = 8;
 
@@ -290,8 +292,10 @@ class Tracker {
   /// droplets of a spray have booked more than it (see rebalance).
   int places_ = 1;  ///< interfaces and contacts among which weak_ shares its budget
   double resolution_ = 0.0;
+  double coarsest_resolution_ = 0.0;  ///< reported as wave_resolution
   void set_resolution(double r) {
     resolution_ = r;
+    coarsest_resolution_ = std::max(coarsest_resolution_, r);
     merge_base_ = kMergeFraction * r * r * total_length_;
     merge_ = std::max(merge_, merge_base_);
     weak_merging_ = 0.5 * r * r;
@@ -300,15 +304,18 @@ class Tracker {
     front_cap_ = static_cast<double>(scene_.bodies.size()) * std::max(kMinFrontsPerBody, kFrontsPerBody / r);
   }
   /// A spray's droplets (a chaotic sequence of collisions that knock pieces off) book an
-  /// error that does not fall with the tolerance. Once their share of the bound exceeds
-  /// the tolerance, resolving the waves to the tolerance buys no smaller bound at a cost
-  /// that grows as 1/tolerance²: waves and droplets are resolved to kDropletBalance × that
-  /// share from then on, no coarser than where the front cap reaches its floor (0.005).
+  /// error that does not fall with the tolerance, while resolving the waves around them to
+  /// the tolerance costs ~1/tolerance² per crossing. At each droplet, while the waves have
+  /// booked (merges and fan steps) less than kDropletBalance × what the droplets have, the
+  /// resolution of waves and droplets coarsens by kResolutionStep (no coarser than where the
+  /// front cap reaches its floor); once they have booked more, it refines by as much (no
+  /// finer than the tolerance). The waves' share of the bound then follows the droplets'.
   void rebalance() {
-    const double droplets = kStability * error_droplets_ / total_length_;
-    const double r =
-        std::max(scene_.solver.tolerance, std::min(kFrontsPerBody / kMinFrontsPerBody, kDropletBalance * droplets));
-    if (r > 1.01 * resolution_) set_resolution(r);
+    double r = error_merges_ + error_fans_ < kDropletBalance * error_droplets_
+                   ? std::min(kFrontsPerBody / kMinFrontsPerBody, kResolutionStep * resolution_)
+                   : resolution_ / kResolutionStep;
+    r = std::max(r, scene_.solver.tolerance);
+    if (r != resolution_) set_resolution(r);
   }
   /// A solution that grows rough (a pulse scattered by many contacts into more and more
   /// waves) cannot be held to a fixed L1 error by a bounded number of fronts. Work is bounded
