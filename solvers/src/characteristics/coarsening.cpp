@@ -135,19 +135,29 @@ bool Tracker::merge_across(int p, int q, double t) {
   if (left_of_p == kNone || right_of_q == kNone) return false;
   // No merge costs less than the weaker front times the distance: most are refused here.
   if (std::min(nodes_[p].strength, nodes_[q].strength) * (nodes_[q].X_at(t) - nodes_[p].X_at(t)) > merge_) return false;
-  const auto invariant = [&](const State& st, int family) { return st.rapidity + family * m.riemann_psi(st.stretch); };
+  const auto invariant = [&](const State& st, int family) { return st.rapidity + family * memo_->psi(m, st.stretch); };
   const State before = nodes_[left_of_p].right.state;
   const State after_q = nodes_[q].right.state;
   const double j_before = invariant(before, f), j_after_p = invariant(nodes_[p].right.state, f);
   const double j_after_q = invariant(after_q, f);
   const double Xp = nodes_[p].X_at(t), Xq = nodes_[q].X_at(t);
-  if (std::min(std::abs(j_after_p - j_before), std::abs(j_after_q - j_after_p)) * (Xq - Xp) > merge_) return false;
+  const double sigma_p = j_after_p - j_before, sigma_q = j_after_q - j_after_p;
+  const double weaker = std::min(std::abs(sigma_p), std::abs(sigma_q));
+  if (weaker * (Xq - Xp) > merge_) return false;
+  // To first order in the jumps, keeping the lab length puts X̄ at the strength-weighted mean
+  // of p and q for two steps of one sign (cost 2 σp σq/(σp + σq) × distance), and beyond the
+  // weaker one for a bump (cost 2 min(|σp|, |σq|) × distance). Almost every merge refused is
+  // refused here, before the new states are found; the margin leaves the rare one the
+  // higher orders make cheaper to the exact cost below.
+  const double estimate =
+      (sigma_p * sigma_q > 0.0 ? 2.0 * sigma_p * sigma_q / (sigma_p + sigma_q) : 2.0 * weaker) * (Xq - Xp);
+  if (estimate > kMergeEstimateMargin * merge_) return false;
   const auto with_invariant = [&](const State& st, double j_f) -> Solved<State> {
     const double j_other = invariant(st, -f);
     const double j_plus = f > 0 ? j_f : j_other, j_minus = f > 0 ? j_other : j_f;
     const double psi = 0.5 * (j_plus - j_minus);
     if (!(psi < m.psi_max() && psi > m.psi_min())) return Solved<State>::failure(Status::out_of_range);
-    const Solved<Stretch> stretch = m.stretch_at_psi(psi);
+    const Solved<Stretch> stretch = memo_->stretch_at_psi(m, psi);
     if (!stretch.ok()) return Solved<State>::failure(stretch.status);
     return Solved<State>{State{0.5 * (j_plus + j_minus), stretch.value}, Status::ok};
   };

@@ -67,6 +67,9 @@ constexpr double kDissipationPrecision = 1.0;
 /// resolution stops coarsening, by kResolutionStep per droplet (see Tracker::rebalance).
 constexpr double kDropletBalance = 0.5;
 constexpr double kResolutionStep = 1.1;
+/// A merge across fronts of the other family is tried in full only if its first-order cost
+/// is at most this multiple of what a merge may cost (see Tracker::merge_across).
+constexpr double kMergeEstimateMargin = 1.1;
 /// How many fronts of the other family a merge of two fronts of one family may reach across.
 constexpr int kMergeReach = 8;
 
