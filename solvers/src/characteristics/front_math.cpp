@@ -101,11 +101,11 @@ Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch 
 }
 
 Solved<double> curve_rapidity(const Material& m, const State& outer, double psi_outer, double outer_speed, double z,
-                              int family, bool* shock) {
+                              double psi_z, int family, bool* shock) {
   const Stretch s = Stretch::from_log(z);
   // The state on the integral curve; the wave is a shock where the characteristics of its
   // family converge across it (as wave_is_shock decides, with the outer speed given).
-  const double on_curve = outer.rapidity + family * (m.riemann_psi(s) - psi_outer);
+  const double on_curve = outer.rapidity + family * (psi_z - psi_outer);
   bool converging = false;
   if (!m.linearly_degenerate() && s != outer.stretch) {
     const double star_speed = characteristic_speed(m, State{on_curve, s}, family);
@@ -116,15 +116,15 @@ Solved<double> curve_rapidity(const Material& m, const State& outer, double psi_
   return Solved<double>{on_curve, Status::ok};
 }
 
-Solved<SameMaterialStar> same_material_star(const Material& m, const State& left, const State& right,
-                                            const State& guess, double accept) {
+Solved<SameMaterialStar> same_material_star(const Material& m, const CrossingEnds& ends, const State& guess,
+                                            double accept) {
   using Result = Solved<SameMaterialStar>;
-  const double psi_left = m.riemann_psi(left.stretch), psi_right = m.riemann_psi(right.stretch);
-  const double speed_left = characteristic_speed(m, left, -1), speed_right = characteristic_speed(m, right, +1);
   SameMaterialStar star;
   auto mismatch = [&](double z, double& g) {
-    const Solved<double> a = curve_rapidity(m, left, psi_left, speed_left, z, -1, &star.shock[0]);
-    const Solved<double> b = curve_rapidity(m, right, psi_right, speed_right, z, +1, &star.shock[1]);
+    const double psi_z = m.riemann_psi(Stretch::from_log(z));
+    const Solved<double> a = curve_rapidity(m, ends.left, ends.psi_left, ends.speed_left, z, psi_z, -1, &star.shock[0]);
+    const Solved<double> b =
+        curve_rapidity(m, ends.right, ends.psi_right, ends.speed_right, z, psi_z, +1, &star.shock[1]);
     if (!a.ok() || !b.ok()) return false;
     g = a.value - b.value;
     star.state = State{0.5 * (a.value + b.value), Stretch::from_log(z)};

@@ -39,9 +39,10 @@ Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch 
 /// closed-form Hugoniot where that wave is a shock, else the integral curve (the other
 /// family's invariant carried across: φ = φ_outer + family (Ψ − Ψ_outer)).
 /// `outer_speed` is the characteristic speed of family `family` in `outer` (a root find along
-/// one curve asks for it once). `shock`, if given, says which of the two it was.
+/// one curve asks for it once), `psi_z` = Ψ(e^z) (both curves of a crossing ask for it at
+/// the same z). `shock`, if given, says which of the two it was.
 Solved<double> curve_rapidity(const Material& m, const State& outer, double psi_outer, double outer_speed, double z,
-                              int family, bool* shock = nullptr);
+                              double psi_z, int family, bool* shock = nullptr);
 
 /// The star state of two states of one material, with what its two waves are: [0] the C−
 /// wave (from `left`), [1] the C+ wave (from `right`). `off` is how far the star's rapidity
@@ -54,6 +55,15 @@ struct SameMaterialStar {
   bool converged = false;
 };
 
+/// Two states of one material with what the curves through them need: Ψ, and the
+/// characteristic speed of the family whose curve leaves each (C− from the left state, C+
+/// from the right one). A crossing has them at hand.
+struct CrossingEnds {
+  State left, right;
+  double psi_left = 0.0, psi_right = 0.0;
+  double speed_left = 0.0, speed_right = 0.0;
+};
+
 /// The exact star state between two states of one material: ln s* where the C− curve
 /// through `left` meets the C+ curve through `right`, by secant steps from `guess` (the
 /// two-rarefaction star, within third order of the answer for weak waves). Every curve is
@@ -61,8 +71,8 @@ struct SameMaterialStar {
 /// evaluation is the answer: the search ends at a mismatch at round-off, or at one below
 /// `accept` (a caller that books `off` as an error may take the guess of a weak crossing as
 /// it is).
-Solved<SameMaterialStar> same_material_star(const Material& m, const State& left, const State& right,
-                                            const State& guess, double accept = 0.0);
+Solved<SameMaterialStar> same_material_star(const Material& m, const CrossingEnds& ends, const State& guess,
+                                            double accept = 0.0);
 
 bool same_state(const State& a, const State& b);
 

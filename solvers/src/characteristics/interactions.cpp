@@ -85,7 +85,9 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     // The star where the two wave curves meet, to round-off, or as soon as they miss each
     // other by less than star_mismatch_ (then booked on both fronts like a shock held off
     // its Hugoniot: a weak crossing often takes the two-rarefaction star as it is).
-    const Solved<SameMaterialStar> found = same_material_star(*m, left, right, star, star_mismatch_);
+    const CrossingEnds ends{
+        left, right, psi_left, psi_right, characteristic_speed(*m, left, -1), characteristic_speed(*m, right, +1)};
+    const Solved<SameMaterialStar> found = same_material_star(*m, ends, star, star_mismatch_);
     if (!found.ok()) return false;
     star = found.value.state;
     double psi_of_star = m->riemann_psi(star.stretch);
