@@ -1,5 +1,7 @@
 #include "scene_checker.hpp"
 
+#include <yaml-cpp/yaml.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -53,16 +55,13 @@ std::string child_path(const std::string& path, const std::string& name) {
 bool is_scalar_kind(Kind k) { return k != Kind::list && k != Kind::tuple && k != Kind::map && k != Kind::dictionary; }
 
 /// Plain scalars and explicit !!int / !!float are numbers; quoted text is a string.
-bool is_plain(const YAML::Node& node) {
-  const std::string& tag = node.Tag();
-  return tag == "?" || tag == "tag:yaml.org,2002:float" || tag == "tag:yaml.org,2002:int";
-}
+bool is_plain(const TreeValue& node) { return node.is_plain(); }
 
-std::string describe_value(const YAML::Node& node) {
-  if (!node.IsDefined() || node.IsNull()) return "nothing";
-  if (node.IsSequence()) return "a list";
-  if (node.IsMap()) return "a map";
-  return quoted(node.Scalar());
+std::string describe_value(const TreeValue& node) {
+  if (!node.defined() || node.is_null()) return "nothing";
+  if (node.is_list()) return "a list";
+  if (node.is_map()) return "a map";
+  return quoted(std::string(node.text()));
 }
 
 bool is_identifier(const std::string& s) {
@@ -136,11 +135,11 @@ void Checker::fail(const Checked& at, const std::string& message, bool at_key) c
   sources_.fail(at.path, at_key ? at.key_mark : at.mark, message, at_key);
 }
 
-void Checker::wrong_type(const YAML::Node& node, const Checked& at, const std::string& expected) const {
+void Checker::wrong_type(const TreeValue& node, const Checked& at, const std::string& expected) const {
   fail(at, "must be " + expected + ", got " + describe_value(node));
 }
 
-Checked Checker::check(const YAML::Node& node, const Key& key, const std::string& path, const YAML::Mark& key_mark) {
+Checked Checker::check(const TreeValue& node, const Key& key, const std::string& path, const YAML::Mark& key_mark) {
   Checked out;
   const std::size_t dot = path.rfind('.');
   out.name = dot == std::string::npos ? path : path.substr(dot + 1);
@@ -148,7 +147,7 @@ Checked Checker::check(const YAML::Node& node, const Key& key, const std::string
   out.kind = key.kind;
   out.dimension = key.dimension;
   // An empty value's mark points past it; its key's mark is where the reader looks.
-  out.mark = node.IsNull() && key_mark.line >= 0 ? key_mark : node.Mark();
+  out.mark = node.is_null() && key_mark.line >= 0 ? key_mark : node.mark();
   out.key_mark = key_mark.line >= 0 ? key_mark : out.mark;
   if (++visited_ > schema::kMaxNodes)
     fail(out, "too many values (with aliases expanded): a scene holds at most " + std::to_string(schema::kMaxNodes));
@@ -167,12 +166,12 @@ Checked Checker::check(const YAML::Node& node, const Key& key, const std::string
   return out;
 }
 
-Checked Checker::check_scalar(const YAML::Node& node, const Key& key, Checked out) const {
+Checked Checker::check_scalar(const TreeValue& node, const Key& key, Checked out) const {
   const std::string expected = key.kind == Kind::boolean  ? "true or false"
                                : key.kind == Kind::choice ? "one of: " + join(key.words)
                                                           : "a string";
-  if (!node.IsScalar()) wrong_type(node, out, expected);
-  const std::string& text = node.Scalar();
+  if (!node.is_scalar()) wrong_type(node, out, expected);
+  const std::string text(node.text());
   switch (key.kind) {
     case Kind::boolean: {
       if (!is_plain(node)) fail(out, "must be true or false, got the quoted string " + quoted(text));
@@ -200,11 +199,11 @@ Checked Checker::check_scalar(const YAML::Node& node, const Key& key, Checked ou
   }
 }
 
-Checked Checker::check_number(const YAML::Node& node, const Key& key, Checked out) const {
+Checked Checker::check_number(const TreeValue& node, const Key& key, Checked out) const {
   const std::string expected = std::string(key.kind == Kind::integer ? "a whole number" : "a number") +
                                (key.words.empty() ? "" : " or one of: " + join(key.words));
-  if (!node.IsScalar()) wrong_type(node, out, expected);
-  const std::string& text = node.Scalar();
+  if (!node.is_scalar()) wrong_type(node, out, expected);
+  const std::string text(node.text());
   if (std::find(key.words.begin(), key.words.end(), text) != key.words.end()) {
     out.word = text;
     return out;
@@ -238,9 +237,9 @@ Checked Checker::check_number(const YAML::Node& node, const Key& key, Checked ou
   return out;
 }
 
-Checked Checker::check_list(const YAML::Node& node, const Key& key, Checked out) {
+Checked Checker::check_list(const TreeValue& node, const Key& key, Checked out) {
   const bool tuple = key.kind == Kind::tuple;
-  if (!node.IsSequence()) wrong_type(node, out, tuple ? "a list " + key.doc : std::string("a list"));
+  if (!node.is_list()) wrong_type(node, out, tuple ? "a list " + key.doc : std::string("a list"));
   const std::size_t size = node.size();
   if (tuple && size != key.fields.size())
     fail(out, "must be a list of " + std::to_string(key.fields.size()) + " numbers " + key.doc + ", got " +
@@ -251,10 +250,11 @@ Checked Checker::check_list(const YAML::Node& node, const Key& key, Checked out)
     fail(out, "must have at least " + std::to_string(key.min_items) + (key.min_items == 1 ? " entry" : " entries"));
 
   std::set<std::string> seen;
-  std::size_t index = 0;
-  for (auto it = node.begin(); it != node.end(); ++it, ++index) {
+  out.entries.reserve(size);
+  for (std::size_t index = 0; index < size; ++index) {
+    const TreeValue item = node.item(index);
     const Key& entry_key = tuple ? key.fields[index] : key.fields.front();
-    Checked entry = check(*it, entry_key, child_path(out.path, std::to_string(index)), it->Mark());
+    Checked entry = check(item, entry_key, child_path(out.path, std::to_string(index)), item.mark());
     if (key.unique && !entry.word.empty() && !seen.insert(entry.word).second)
       fail(entry, quoted(entry.word) + " is listed twice");
     out.entries.push_back(std::move(entry));
@@ -262,24 +262,24 @@ Checked Checker::check_list(const YAML::Node& node, const Key& key, Checked out)
   return out;
 }
 
-std::vector<Checker::Entry> Checker::entries_of(const YAML::Node& map, const std::string& path) const {
+std::vector<Checker::Entry> Checker::entries_of(const TreeValue& map, const std::string& path) const {
   std::vector<Entry> entries;
   std::map<std::string, int> first_line;
-  for (auto it = map.begin(); it != map.end(); ++it) {
-    const YAML::Node k = it->first;  // a copy: it-> points into a temporary
-    if (!k.IsScalar() || k.Scalar().empty())
-      sources_.fail(child_path(path, "?"), k.Mark(), "a key must be a plain name, got " + describe_value(k), true);
-    const std::string name = k.Scalar();
-    if (const auto [first, inserted] = first_line.emplace(name, k.Mark().line + 1); !inserted)
-      sources_.fail(child_path(path, name), k.Mark(),
+  for (std::size_t e = 0; e < map.size(); ++e) {
+    const TreeValue k = map.key(e);
+    if (!k.is_scalar() || k.text().empty())
+      sources_.fail(child_path(path, "?"), k.mark(), "a key must be a plain name, got " + describe_value(k), true);
+    std::string name(k.text());
+    if (const auto [first, inserted] = first_line.emplace(name, k.mark().line + 1); !inserted)
+      sources_.fail(child_path(path, name), k.mark(),
                     "duplicate key '" + name + "' (first given at line " + std::to_string(first->second) + ")", true);
-    entries.push_back(Entry{name, k, it->second});
+    entries.push_back(Entry{std::move(name), k, map.value(e)});
   }
   return entries;
 }
 
-Checked Checker::check_map(const YAML::Node& node, const Key& key, Checked out) {
-  if (!node.IsMap()) wrong_type(node, out, "a map");
+Checked Checker::check_map(const TreeValue& node, const Key& key, Checked out) {
+  if (!node.is_map()) wrong_type(node, out, "a map");
   const std::vector<Entry> entries = entries_of(node, out.path);
   auto given = [&](const std::string& name) -> const Entry* {
     for (const Entry& e : entries)
@@ -297,7 +297,7 @@ Checked Checker::check_map(const YAML::Node& node, const Key& key, Checked out) 
     if (e == nullptr)
       sources_.fail(child_path(out.path, selector->name), out.mark,
                     "missing required key '" + selector->name + "' (" + selector->doc + ")");
-    const Checked selected = check(e->value, *selector, child_path(out.path, e->name), e->key.Mark());
+    const Checked selected = check(e->value, *selector, child_path(out.path, e->name), e->key.mark());
     chosen = key.extension->fields(selected.word);
     for (const Key& k : chosen) keys.push_back(&k);
   }
@@ -309,7 +309,7 @@ Checked Checker::check_map(const YAML::Node& node, const Key& key, Checked out) 
     std::vector<std::string> names;
     for (const Key* k : keys) names.push_back(k->name);
     const std::string near = suggestion(e.name, names);
-    sources_.fail(child_path(out.path, e.name), e.key.Mark(),
+    sources_.fail(child_path(out.path, e.name), e.key.mark(),
                   "unknown key '" + e.name + "'" +
                       (near.empty() ? "; expected one of: " + join(names) : " (did you mean '" + near + "'?)"),
                   true);
@@ -322,15 +322,15 @@ Checked Checker::check_map(const YAML::Node& node, const Key& key, Checked out) 
     const std::string path = child_path(out.path, k.name);
     if (const Entry* e = given(k.name)) {
       if (k.only_if && !holds(*k.only_if, out))
-        sources_.fail(path, e->key.Mark(), "'" + k.name + "' " + condition_text(*k.only_if, out), true);
+        sources_.fail(path, e->key.mark(), "'" + k.name + "' " + condition_text(*k.only_if, out), true);
       if (group != nullptr)
         for (const std::string& other : group->keys)
           if (other != k.name && out.has(other))
             sources_.fail(
-                path, e->key.Mark(),
+                path, e->key.mark(),
                 "give only one of " + quoted_list(group->keys) + ", not both '" + other + "' and '" + k.name + "'",
                 true);
-      out.entries.push_back(check(e->value, k, path, e->key.Mark()));
+      out.entries.push_back(check(e->value, k, path, e->key.mark()));
       continue;
     }
     if (k.only_if && !holds(*k.only_if, out)) continue;
@@ -355,8 +355,8 @@ Checked Checker::check_map(const YAML::Node& node, const Key& key, Checked out) 
   return out;
 }
 
-Checked Checker::check_dictionary(const YAML::Node& node, const Key& key, Checked out) {
-  if (!node.IsMap()) wrong_type(node, out, "a map of names");
+Checked Checker::check_dictionary(const TreeValue& node, const Key& key, Checked out) {
+  if (!node.is_map()) wrong_type(node, out, "a map of names");
   const std::vector<Entry> entries = entries_of(node, out.path);
   if (entries.size() > key.max_items)
     fail(out, "has " + std::to_string(entries.size()) + " entries; at most " + std::to_string(key.max_items) +
@@ -364,9 +364,9 @@ Checked Checker::check_dictionary(const YAML::Node& node, const Key& key, Checke
   if (entries.size() < key.min_items) fail(out, "must have at least " + std::to_string(key.min_items) + " entry");
   for (const Entry& e : entries) {
     if (!is_identifier(e.name))
-      sources_.fail(child_path(out.path, e.name), e.key.Mark(),
+      sources_.fail(child_path(out.path, e.name), e.key.mark(),
                     "a name must be letters, digits, '_' and '-', got " + quoted(e.name), true);
-    out.entries.push_back(check(e.value, key.fields.front(), child_path(out.path, e.name), e.key.Mark()));
+    out.entries.push_back(check(e.value, key.fields.front(), child_path(out.path, e.name), e.key.mark()));
   }
   return out;
 }
@@ -382,7 +382,7 @@ Checked Checker::absent(const Key& key, const Checked& parent) {
   out.given = false;
   if (key.kind == Kind::map) {
     // An absent map is an empty one: its own defaults apply.
-    out = check_map(YAML::Node(YAML::NodeType::Map), key, std::move(out));
+    out = check_map(SceneTree::empty_map(), key, std::move(out));
     out.mark = parent.mark;
     return out;
   }

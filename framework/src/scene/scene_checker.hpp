@@ -1,9 +1,9 @@
 #pragma once
-// The schema walker: checks a YAML tree against a schema::Key and returns the checked
+// The schema walker: checks a scene tree (scene_tree.hpp) against a schema::Key and returns the checked
 // values (natural units, defaults filled in), from which the loader builds the Scene
 // and resolved_scene.yaml is written. Internal to the scene loader.
 
-#include <yaml-cpp/yaml.h>
+#include <yaml-cpp/mark.h>
 
 #include <string>
 #include <string_view>
@@ -47,7 +47,7 @@ class Checker {
   Checker(const Sources& sources, UnitSystem units) : sources_(sources), units_(units) {}
 
   /// Checks `node` (the value at `path`, whose key sits at `key_mark`) against `key`. \throws InputError
-  [[nodiscard]] Checked check(const YAML::Node& node, const schema::Key& key, const std::string& path,
+  [[nodiscard]] Checked check(const TreeValue& node, const schema::Key& key, const std::string& path,
                               const YAML::Mark& key_mark);
 
   /// A value derived by the loader, in natural units, as a default field of `parent`.
@@ -61,20 +61,20 @@ class Checker {
  private:
   struct Entry {
     std::string name;
-    YAML::Node key;
-    YAML::Node value;
+    TreeValue key;
+    TreeValue value;
   };
 
-  Checked check_scalar(const YAML::Node& node, const schema::Key& key, Checked out) const;
-  Checked check_number(const YAML::Node& node, const schema::Key& key, Checked out) const;
-  Checked check_list(const YAML::Node& node, const schema::Key& key, Checked out);
-  Checked check_map(const YAML::Node& node, const schema::Key& key, Checked out);
-  Checked check_dictionary(const YAML::Node& node, const schema::Key& key, Checked out);
+  Checked check_scalar(const TreeValue& node, const schema::Key& key, Checked out) const;
+  Checked check_number(const TreeValue& node, const schema::Key& key, Checked out) const;
+  Checked check_list(const TreeValue& node, const schema::Key& key, Checked out);
+  Checked check_map(const TreeValue& node, const schema::Key& key, Checked out);
+  Checked check_dictionary(const TreeValue& node, const schema::Key& key, Checked out);
   /// The value of an absent key that is neither required nor derived: its default.
   Checked absent(const schema::Key& key, const Checked& parent);
 
-  [[nodiscard]] std::vector<Entry> entries_of(const YAML::Node& map, const std::string& path) const;
-  [[noreturn]] void wrong_type(const YAML::Node& node, const Checked& at, const std::string& expected) const;
+  [[nodiscard]] std::vector<Entry> entries_of(const TreeValue& map, const std::string& path) const;
+  [[noreturn]] void wrong_type(const TreeValue& node, const Checked& at, const std::string& expected) const;
 
   const Sources& sources_;
   UnitSystem units_;

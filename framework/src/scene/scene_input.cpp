@@ -1,6 +1,6 @@
 #include "scene_input.hpp"
 
-#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/exceptions.h>
 
 #include <algorithm>
 #include <charconv>
@@ -80,23 +80,25 @@ std::size_t first_control_character(std::string_view text) {
   return std::string_view::npos;
 }
 
-std::string kind_of(const YAML::Node& node) {
-  if (node.IsMap()) return "a map";
-  if (node.IsSequence()) return "a list";
-  if (node.IsNull()) return "empty";
-  return "the value " + quoted(node.Scalar());
+std::string kind_of(const TreeValue& node) {
+  if (node.is_map()) return "a map";
+  if (node.is_list()) return "a list";
+  if (node.is_null()) return "empty";
+  return "the value " + quoted(std::string(node.text()));
 }
 
-/// The child of a map named `key` (the first, if the file repeats it), or an invalid node.
-YAML::Node map_child(YAML::Node& map, const std::string& key) {
-  for (auto it = map.begin(); it != map.end(); ++it)
-    if (it->first.IsScalar() && it->first.Scalar() == key) return it->second;
-  return YAML::Node(YAML::NodeType::Undefined);
+/// The entry of a map named `key` (the first, if the file repeats it), or npos.
+std::size_t map_entry(const TreeValue& map, const std::string& key) {
+  for (std::size_t e = 0; e < map.size(); ++e) {
+    const TreeValue k = map.key(e);
+    if (k.is_scalar() && k.text() == key) return e;
+  }
+  return std::string::npos;
 }
 
 }  // namespace
 
-void Sources::apply_override(YAML::Node& root, const std::string& assignment) {
+void Sources::apply_override(SceneTree& tree, const std::string& assignment) {
   Override o;
   o.line = static_cast<int>(overrides_.size()) + 1;
   auto fail_at = [&](int column, const std::string& key, const std::string& message) {
@@ -127,55 +129,61 @@ void Sources::apply_override(YAML::Node& root, const std::string& assignment) {
   // The value: a YAML scalar or flow collection.
   o.value_column = static_cast<int>(equals) + 2;
   const std::string value_text = assignment.substr(equals + 1);
-  YAML::Node value;
+  SceneTree parsed;
   try {
-    value = YAML::Load(value_text);
+    parsed = SceneTree::parse(value_text, schema::kMaxNodes, schema::kMaxDepth);
   } catch (const YAML::Exception& e) {
     fail_at(o.value_column + (e.mark.column > 0 ? e.mark.column : 0), dotted(o.path), "malformed value: " + e.msg);
+  } catch (const TreeLimit& e) {
+    fail_at(o.value_column + (e.mark.column > 0 ? e.mark.column : 0), dotted(o.path), e.message);
   }
-  if (!value.IsDefined() || (value.IsNull() && value_text.find_first_not_of(" \t") == std::string::npos))
+  if (parsed.root().is_null() && value_text.find_first_not_of(" \t") == std::string::npos)
     fail_at(o.value_column, dotted(o.path), "missing value after '='");
+  const int value = tree.graft(parsed, parsed.root().index());
 
   // Walk to the parent of the last component, creating maps where the file has none.
-  YAML::Node node = root;
+  int node = tree.root().index();
   o.existed = o.path.size();
   for (std::size_t i = 0; i < o.path.size(); ++i) {
     const std::string& component = o.path[i];
     const Path here(o.path.begin(), o.path.begin() + static_cast<std::ptrdiff_t>(i) + 1);
     const bool last = i + 1 == o.path.size();
-    if (node.IsSequence()) {
+    const TreeValue at = tree.at(node);
+    if (at.is_list()) {
       std::size_t index = 0;
       const auto [end, ec] = std::from_chars(component.data(), component.data() + component.size(), index);
-      if (ec != std::errc() || end != component.data() + component.size() || index >= node.size()) {
+      if (ec != std::errc() || end != component.data() + component.size() || index >= at.size()) {
         const Path parent(here.begin(), here.end() - 1);
         const std::string indices =
-            node.size() == 0 ? "it is empty" : "expected an index from 0 to " + std::to_string(node.size() - 1);
+            at.size() == 0 ? "it is empty" : "expected an index from 0 to " + std::to_string(at.size() - 1);
         fail_at(o.columns[i], dotted(here),
-                "'" + dotted(parent) + "' is a list of " + std::to_string(node.size()) + " entries; " + indices +
+                "'" + dotted(parent) + "' is a list of " + std::to_string(at.size()) + " entries; " + indices +
                     ", got " + quoted(component));
       }
       if (last)
-        node[index] = value;  // assignment to a node changes the tree
+        tree.set_item(node, index, value);
       else
-        node.reset(node[index]);  // reset() moves the cursor without touching the tree
-    } else if (node.IsMap()) {
-      YAML::Node child = map_child(node, component);
+        node = at.item(index).index();
+    } else if (at.is_map()) {
+      const std::size_t entry = map_entry(at, component);
       if (last) {
-        if (child.IsDefined())
-          child = value;
+        if (entry != std::string::npos)
+          tree.set_value(node, entry, value);
         else
-          node[component] = value;
-      } else if (!child.IsDefined()) {
+          tree.add_entry(node, component, value);
+      } else if (entry == std::string::npos) {
         o.existed = std::min(o.existed, i);
-        node[component] = YAML::Node(YAML::NodeType::Map);
-        node.reset(map_child(node, component));
+        const int created = tree.add_map();
+        tree.add_entry(node, component, created);
+        node = created;
       } else {
-        if (child.IsNull()) child = YAML::Node(YAML::NodeType::Map);
-        node.reset(child);
+        const int child = at.value(entry).index();
+        if (tree.at(child).is_null()) tree.null_to_map(child);
+        node = child;
       }
     } else {
       const Path parent(here.begin(), here.end() - 1);
-      fail_at(o.columns[i], dotted(here), "'" + dotted(parent) + "' is " + kind_of(node) + ", not a map or list");
+      fail_at(o.columns[i], dotted(here), "'" + dotted(parent) + "' is " + kind_of(at) + ", not a map or list");
     }
   }
   overrides_.push_back(std::move(o));
@@ -184,53 +192,6 @@ void Sources::apply_override(YAML::Node& root, const std::string& assignment) {
 // ---- parsing ----------------------------------------------------------------------------
 
 namespace {
-
-/// Thrown by the pre-scan when the text exceeds a limit; carries the mark.
-struct LimitExceeded {
-  YAML::Mark mark;
-  std::string message;
-};
-
-/// Counts documents, values and nesting without building a tree, so that no input
-/// can make yaml-cpp's node builder exhaust memory or stack.
-class PreScan final : public YAML::EventHandler {
- public:
-  int documents = 0;
-
-  YAML::Mark first_document;
-
-  void OnDocumentStart(const YAML::Mark& mark) override {
-    if (++documents == 1) first_document = mark;
-    if (documents == 2) throw LimitExceeded{mark, "a scene file holds one YAML document; a second one starts here"};
-  }
-  void OnDocumentEnd() override {}
-  void OnNull(const YAML::Mark& mark, YAML::anchor_t) override { count(mark); }
-  void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override { count(mark); }
-  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t, const std::string&) override {
-    count(mark);
-  }
-  void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
-    open(mark);
-  }
-  void OnSequenceEnd() override { --depth_; }
-  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
-    open(mark);
-  }
-  void OnMapEnd() override { --depth_; }
-
- private:
-  void count(const YAML::Mark& mark) {
-    if (++nodes_ > schema::kMaxNodes)
-      throw LimitExceeded{mark, "too many values: a scene holds at most " + std::to_string(schema::kMaxNodes)};
-  }
-  void open(const YAML::Mark& mark) {
-    count(mark);
-    if (++depth_ > schema::kMaxDepth)
-      throw LimitExceeded{mark, "nesting deeper than " + std::to_string(schema::kMaxDepth) + " levels: not a scene"};
-  }
-  std::size_t nodes_ = 0;
-  int depth_ = 0;
-};
 
 /// Line and column (1-based) of byte `offset` in text.
 SourceLocation position_of(std::string_view text, std::size_t offset, const std::string& source) {
@@ -296,7 +257,7 @@ SourceLocation at_mark(const YAML::Mark& mark, const std::string& source) {
 
 }  // namespace
 
-YAML::Node parse_scene_text(std::string_view text, const std::string& source) {
+SceneTree parse_scene_text(std::string_view text, const std::string& source) {
   if (text.size() > schema::kMaxInputBytes)
     throw InputError({source, 1, 1}, "",
                      "the file is " + std::to_string(text.size()) + " bytes; a scene file is at most " +
@@ -311,20 +272,18 @@ YAML::Node parse_scene_text(std::string_view text, const std::string& source) {
 
   const std::string buffer(text);
   try {
-    std::istringstream stream(buffer);
-    YAML::Parser parser(stream);
-    PreScan scan;
-    while (parser.HandleNextDocument(scan)) {
+    SceneTree tree = SceneTree::parse(buffer, schema::kMaxNodes, schema::kMaxDepth);
+    const TreeValue root = tree.root();
+    if (root.is_null()) {
+      const YAML::Mark& mark = tree.document_mark();
+      throw InputError(at_mark(mark, source), "", kEmptyScene);
     }
-    if (scan.documents == 0) throw InputError({source, 1, 1}, "", kEmptyScene);
-    YAML::Node root = YAML::Load(buffer);
-    if (root.IsNull()) throw InputError(at_mark(scan.first_document, source), "", kEmptyScene);
-    if (!root.IsMap())
-      throw InputError(at_mark(root.Mark(), source), "",
+    if (!root.is_map())
+      throw InputError(at_mark(root.mark(), source), "",
                        "the scene must be a map of keys (name, units, materials, bodies, ...), got " +
-                           std::string(root.IsSequence() ? "a list" : "a single value"));
-    return root;
-  } catch (const LimitExceeded& e) {
+                           std::string(root.is_list() ? "a list" : "a single value"));
+    return tree;
+  } catch (const TreeLimit& e) {
     throw InputError(at_mark(e.mark, source), "", e.message);
   } catch (const YAML::Exception& e) {
     throw InputError(at_mark(e.mark, source), "", "YAML syntax error: " + e.msg);

@@ -2,13 +2,14 @@
 // From scene text to a YAML tree: hostile-input guards, `--set` overrides, and the
 // file:line:column of every value for error messages. Internal to the scene loader.
 
-#include <yaml-cpp/yaml.h>
+#include <yaml-cpp/mark.h>
 
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "rigidity/errors.hpp"
+#include "scene_tree.hpp"
 
 namespace rigidity::detail {
 
@@ -41,8 +42,8 @@ class Sources {
   [[noreturn]] void fail(const std::string& dotted_path, const YAML::Mark& mark, const std::string& message,
                          bool at_key = false) const;
 
-  /// Parses "key.path=value" and applies it to `root`; later overrides win. \throws InputError
-  void apply_override(YAML::Node& root, const std::string& assignment);
+  /// Parses "key.path=value" and applies it to `tree`; later overrides win. \throws InputError
+  void apply_override(SceneTree& tree, const std::string& assignment);
 
  private:
   struct Override {
@@ -56,10 +57,11 @@ class Sources {
   std::vector<Override> overrides_;
 };
 
-/// Parses the text of a scene file into a YAML map, refusing (InputError naming
-/// `source`, a line and a column) what is not a scene: bytes that are not UTF-8 text,
-/// YAML syntax errors, more than one document, an empty document, a top level that is
-/// not a map, nesting deeper than schema::kMaxDepth, more than schema::kMaxNodes values.
-[[nodiscard]] YAML::Node parse_scene_text(std::string_view text, const std::string& source);
+/// Parses the text of a scene file into a tree whose root is a map, in one pass,
+/// refusing (InputError naming `source`, a line and a column) what is not a scene: bytes
+/// that are not UTF-8 text, YAML syntax errors, more than one document, an empty document,
+/// a top level that is not a map, nesting deeper than schema::kMaxDepth, more than
+/// schema::kMaxNodes values.
+[[nodiscard]] SceneTree parse_scene_text(std::string_view text, const std::string& source);
 
 }  // namespace rigidity::detail

@@ -6,6 +6,8 @@
 
 #include "rigidity/scene_loader.hpp"
 
+#include <yaml-cpp/exceptions.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -34,7 +36,12 @@ namespace {
 using detail::Checked;
 using detail::Checker;
 using detail::format_number;
+using detail::NumberLiteral;
+using detail::NumberSyntax;
+using detail::parse_number;
+using detail::SceneTree;
 using detail::Sources;
+using detail::TreeValue;
 
 /// Most samples a probe may take over the run (t_end / every).
 constexpr double kMaxProbeSamples = 1.0e7;
@@ -334,11 +341,11 @@ class SceneBuilder {
 };
 
 /// The unit system the scene declares, read before any dimensional value.
-UnitSystem read_units(const YAML::Node& root, const schema::Key& schema, const Sources& sources) {
-  for (auto it = root.begin(); it != root.end(); ++it) {
-    if (!it->first.IsScalar() || it->first.Scalar() != "units") continue;
+UnitSystem read_units(const TreeValue& root, const schema::Key& schema, const Sources& sources) {
+  for (std::size_t e = 0; e < root.size(); ++e) {
+    if (!root.key(e).is_scalar() || root.key(e).text() != "units") continue;
     Checker checker(sources, UnitSystem::natural);
-    const Checked units = checker.check(it->second, *schema.field("units"), {"units"}, it->first.Mark());
+    const Checked units = checker.check(root.value(e), *schema.field("units"), {"units"}, root.key(e).mark());
     return units.word == "si" ? UnitSystem::si : UnitSystem::natural;
   }
   return UnitSystem::natural;
@@ -347,12 +354,12 @@ UnitSystem read_units(const YAML::Node& root, const schema::Key& schema, const S
 /// Loads the plugins the scene lists (plugins.hpp), relative paths from `directory`, before
 /// its materials are checked: a scene may use the materials of the plugins it lists. True if
 /// it lists any.
-bool load_listed_plugins(const YAML::Node& root, const schema::Key& schema, const Sources& sources,
+bool load_listed_plugins(const TreeValue& root, const schema::Key& schema, const Sources& sources,
                          const std::filesystem::path& directory) {
-  for (auto it = root.begin(); it != root.end(); ++it) {
-    if (!it->first.IsScalar() || it->first.Scalar() != "plugins") continue;
+  for (std::size_t e = 0; e < root.size(); ++e) {
+    if (!root.key(e).is_scalar() || root.key(e).text() != "plugins") continue;
     Checker checker(sources, UnitSystem::natural);
-    const Checked plugins = checker.check(it->second, *schema.field("plugins"), {"plugins"}, it->first.Mark());
+    const Checked plugins = checker.check(root.value(e), *schema.field("plugins"), {"plugins"}, root.key(e).mark());
     std::vector<PluginReference> references;
     for (const Checked& p : plugins.entries) references.push_back({p.word, p.path, sources.locate(p.path, p.mark)});
     load_scene_plugins(references, directory);
@@ -374,49 +381,52 @@ bool overrides_time_end(const std::vector<std::string>& overrides) {
 /// beyond the new end (a snapshot left without times goes), in the tree, so that
 /// resolved_scene.yaml is the scene as run; what went is said in the returned notes. A
 /// scene file that itself asks for a time beyond its end stays an error.
-std::vector<std::string> clip_snapshots_to_end(YAML::Node& root) {
+std::vector<std::string> clip_snapshots_to_end(SceneTree& tree) {
   std::vector<std::string> notes;
-  // A key a scene leaves out is an invalid node here, which throws when asked its type.
-  const YAML::Node end_node = std::as_const(root)["time"]["end"];
-  double end = 0.0;
-  if (!end_node.IsDefined() || !end_node.IsScalar() || !YAML::convert<double>::decode(end_node, end))
-    return notes;  // the checker says why
-  const YAML::Node snapshots = std::as_const(root)["outputs"]["snapshots"];
-  if (!snapshots.IsDefined() || !snapshots.IsSequence()) return notes;
-  YAML::Node kept_snapshots(YAML::NodeType::Sequence);
+  const TreeValue end_node = tree.root()["time"]["end"];
+  if (!end_node.is_scalar()) return notes;  // the checker says why
+  const NumberLiteral end_literal = parse_number(end_node.text());
+  if (end_literal.syntax != NumberSyntax::finite) return notes;
+  const double end = end_literal.value;
+  const TreeValue outputs = tree.root()["outputs"];
+  const TreeValue snapshots = outputs["snapshots"];
+  if (!snapshots.is_list()) return notes;
+  std::vector<int> kept_snapshots;
   for (std::size_t i = 0; i < snapshots.size(); ++i) {
-    YAML::Node snapshot = snapshots[i];
-    const YAML::Node times = snapshot.IsMap() ? std::as_const(snapshot)["times"] : YAML::Node();
-    if (!times.IsSequence()) {
-      kept_snapshots.push_back(snapshot);
+    const TreeValue snapshot = snapshots.item(i);
+    const TreeValue times = snapshot.is_map() ? snapshot["times"] : TreeValue();
+    if (!times.is_list()) {
+      kept_snapshots.push_back(snapshot.index());
       continue;
     }
-    YAML::Node kept_times(YAML::NodeType::Sequence);
+    std::vector<int> kept_times;
     std::string dropped;
-    for (const YAML::Node& t : times) {
-      double value = 0.0;
-      if (t.IsScalar() && YAML::convert<double>::decode(t, value) && value > end) {
-        dropped += (dropped.empty() ? "" : ", ") + t.Scalar();
+    for (std::size_t k = 0; k < times.size(); ++k) {
+      const TreeValue t = times.item(k);
+      const NumberLiteral value = t.is_scalar() ? parse_number(t.text()) : NumberLiteral{};
+      if (value.syntax == NumberSyntax::finite && value.value > end) {
+        dropped += (dropped.empty() ? "" : ", ") + std::string(t.text());
       } else {
-        kept_times.push_back(t);
+        kept_times.push_back(t.index());
       }
     }
     if (dropped.empty()) {
-      kept_snapshots.push_back(snapshot);
+      kept_snapshots.push_back(snapshot.index());
       continue;
     }
     const std::string which = "outputs.snapshots." + std::to_string(i);
-    if (kept_times.size() == 0) {
-      notes.push_back(which + " dropped: all its times (" + dropped + ") are beyond time.end = " + end_node.Scalar() +
+    const std::string end_text(end_node.text());
+    if (kept_times.empty()) {
+      notes.push_back(which + " dropped: all its times (" + dropped + ") are beyond time.end = " + end_text +
                       " set on the command line");
       continue;
     }
-    snapshot["times"] = kept_times;
-    kept_snapshots.push_back(snapshot);
-    notes.push_back(which + ": times " + dropped + " dropped, beyond time.end = " + end_node.Scalar() +
+    tree.set_items(times.index(), kept_times);
+    kept_snapshots.push_back(snapshot.index());
+    notes.push_back(which + ": times " + dropped + " dropped, beyond time.end = " + end_text +
                     " set on the command line");
   }
-  root["outputs"]["snapshots"] = kept_snapshots;
+  tree.set_items(snapshots.index(), kept_snapshots);
   return notes;
 }
 
@@ -424,21 +434,19 @@ Scene load(std::string_view text, const std::string& source, const std::vector<s
            const std::filesystem::path& directory) {
   Sources sources(source);
   try {
-    YAML::Node root = detail::parse_scene_text(text, source);
-    for (const std::string& assignment : overrides) sources.apply_override(root, assignment);
+    SceneTree tree = detail::parse_scene_text(text, source);
+    for (const std::string& assignment : overrides) sources.apply_override(tree, assignment);
     std::vector<std::string> notes;
-    const auto is_map = [&root](const char* key) {
-      const YAML::Node node = std::as_const(root)[key];
-      return node.IsDefined() && node.IsMap();
-    };
-    if (overrides_time_end(overrides) && root.IsMap() && is_map("outputs") && is_map("time"))
-      notes = clip_snapshots_to_end(root);
+    const TreeValue root = tree.root();
+    if (overrides_time_end(overrides) && root.is_map() && root["outputs"].is_map() && root["time"].is_map())
+      notes = clip_snapshots_to_end(tree);
     load_environment_plugins();  // RIGIDITY_PLUGIN_PATH, before the schema lists the registered models
     schema::Key schema = schema::scene_schema();
-    const UnitSystem units = read_units(root, schema, sources);
-    if (load_listed_plugins(root, schema, sources, directory)) schema = schema::scene_schema();  // with their models
+    const UnitSystem units = read_units(tree.root(), schema, sources);
+    if (load_listed_plugins(tree.root(), schema, sources, directory))
+      schema = schema::scene_schema();  // with their models
     Checker checker(sources, units);
-    Checked checked = checker.check(root, schema, {}, root.Mark());
+    Checked checked = checker.check(tree.root(), schema, {}, tree.root().mark());
     Scene scene = SceneBuilder(checker, sources, units, directory).build(checked);
     scene.resolver = [tree = std::make_shared<const Checked>(std::move(checked)), units] {
       return detail::emit_resolved(*tree, units);
