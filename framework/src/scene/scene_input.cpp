@@ -270,9 +270,8 @@ SceneTree parse_scene_text(std::string_view text, const std::string& source) {
                      "not a text file: byte " + byte.str() + " is not UTF-8 text (a scene is a YAML text file)");
   }
 
-  const std::string buffer(text);
   try {
-    SceneTree tree = SceneTree::parse(buffer, schema::kMaxNodes, schema::kMaxDepth);
+    SceneTree tree = SceneTree::parse(text, schema::kMaxNodes, schema::kMaxDepth);
     const TreeValue root = tree.root();
     if (root.is_null()) {
       const YAML::Mark& mark = tree.document_mark();

@@ -3,8 +3,9 @@
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/parser.h>
 
+#include <istream>
 #include <map>
-#include <sstream>
+#include <streambuf>
 
 namespace rigidity::detail {
 
@@ -148,15 +149,33 @@ class TreeBuilder final : public YAML::EventHandler {
   std::map<YAML::anchor_t, int> anchors_;
 };
 
-SceneTree SceneTree::parse(const std::string& text, std::size_t max_values, int max_depth) {
+namespace {
+/// Reads a text in place: the parser takes a stream, and a scene of megabytes need not be
+/// copied into one.
+class ViewBuffer final : public std::streambuf {
+ public:
+  explicit ViewBuffer(std::string_view text) {
+    char* begin = const_cast<char*>(text.data());  // read only: the get area is never written
+    setg(begin, begin, begin + text.size());
+  }
+};
+}  // namespace
+
+SceneTree SceneTree::parse(std::string_view text, std::size_t max_values, int max_depth) {
   SceneTree tree;
   tree.text_.reserve(text.size() / 2);
-  std::istringstream stream(text);
+  ViewBuffer view(text);
+  std::istream stream(&view);
   YAML::Parser parser(stream);
   TreeBuilder builder(tree, max_values, max_depth);
   while (parser.HandleNextDocument(builder)) {
   }
   if (tree.root_ < 0) tree.root_ = tree.add_node(Node{});  // no document: a null value
+  // Capacity grown by doubling is up to half unused: give it back before the values are
+  // checked (the checked values are the larger part of what loading holds).
+  tree.nodes_.shrink_to_fit();
+  tree.children_.shrink_to_fit();
+  tree.text_.shrink_to_fit();
   return tree;
 }
 

@@ -61,7 +61,7 @@ class SceneTree {
   /// The tree of `text`, a YAML text of at most one document (none: a null root). Guards:
   /// at most max_values values (aliases counted once) and max_depth levels of nesting, one
   /// document. \throws TreeLimit past a guard; YAML::Exception on a syntax error
-  static SceneTree parse(const std::string& text, std::size_t max_values, int max_depth);
+  static SceneTree parse(std::string_view text, std::size_t max_values, int max_depth);
 
   /// An empty map: the value of an absent map key whose own defaults apply.
   static TreeValue empty_map();
