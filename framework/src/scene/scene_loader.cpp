@@ -433,30 +433,39 @@ std::vector<std::string> clip_snapshots_to_end(SceneTree& tree) {
 Scene load(std::string_view text, const std::string& source, const std::vector<std::string>& overrides,
            const std::filesystem::path& directory) {
   Sources sources(source);
-  try {
+  std::vector<std::string> notes;
+  schema::Key schema;
+  UnitSystem units = UnitSystem::natural;
+  // The tree lives only as long as the checking: what the Scene is built from (and
+  // resolved_scene.yaml written from) are the checked values.
+  const auto check = [&] {
     SceneTree tree = detail::parse_scene_text(text, source);
     for (const std::string& assignment : overrides) sources.apply_override(tree, assignment);
-    std::vector<std::string> notes;
     const TreeValue root = tree.root();
     if (overrides_time_end(overrides) && root.is_map() && root["outputs"].is_map() && root["time"].is_map())
       notes = clip_snapshots_to_end(tree);
     load_environment_plugins();  // RIGIDITY_PLUGIN_PATH, before the schema lists the registered models
-    schema::Key schema = schema::scene_schema();
-    const UnitSystem units = read_units(tree.root(), schema, sources);
+    schema = schema::scene_schema();
+    units = read_units(tree.root(), schema, sources);
     if (load_listed_plugins(tree.root(), schema, sources, directory))
       schema = schema::scene_schema();  // with their models
     Checker checker(sources, units);
-    Checked checked = checker.check(tree.root(), schema, {}, tree.root().mark());
-    Scene scene = SceneBuilder(checker, sources, units, directory).build(checked);
-    scene.resolver = [tree = std::make_shared<const Checked>(std::move(checked)), units] {
-      return detail::emit_resolved(*tree, units);
-    };
-    scene.notes = std::move(notes);
-    return scene;
+    return checker.check(tree.root(), schema, {}, tree.root().mark());
+  };
+  Checked checked;
+  try {
+    checked = check();
   } catch (const YAML::Exception& e) {
-    // Walking a tree yaml-cpp has built should not throw; if it does, the input is at fault.
+    // The parser's errors are reported where the text is read; any other is the input's too.
     throw InputError(SourceLocation{source, e.mark.line + 1, e.mark.column + 1}, "", "YAML error: " + e.msg);
   }
+  Checker checker(sources, units);
+  Scene scene = SceneBuilder(checker, sources, units, directory).build(checked);
+  scene.resolver = [tree = std::make_shared<const Checked>(std::move(checked)), units] {
+    return detail::emit_resolved(*tree, units);
+  };
+  scene.notes = std::move(notes);
+  return scene;
 }
 
 }  // namespace
