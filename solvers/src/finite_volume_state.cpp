@@ -15,6 +15,8 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 /// Largest rapidity the recovery considers: sinh and cosh stay finite (γ ≈ 5e303).
 constexpr double kMaxRapidity = 700.0;
 constexpr int kMaxIterations = 200;
+/// A Newton step of the recovery this small (relative, see recover_state) ends it.
+constexpr double kNewtonSettled = 1e-8;
 
 /// ln cosh φ, without overflow and exact for small φ.
 double log_cosh(double phi) {
@@ -148,8 +150,13 @@ Recovered recover_state(const Material& m, const Conserved& u, double rapidity_g
       hi_known = true;
     }
     double next = phi - residual / dg;
-    if (!(next > lo && next < hi)) next = hi_known ? 0.5 * (lo + hi) : std::min(2.0 * std::max(phi, 0.5), hi);
+    const bool newton = next > lo && next < hi;
+    if (!newton) next = hi_known ? 0.5 * (lo + hi) : std::min(2.0 * std::max(phi, 0.5), hi);
+    // A Newton step leaves an error of about (g''/2g') × step², with g''/g' at most of order
+    // min(φ, 1)/φ-scale: below 1e-8 × min(φ, 1) the next iterate is exact to round-off, and
+    // confirming it would cost another evaluation of the material.
     const bool converged = std::abs(next - phi) <= 2.0 * kEps * std::abs(next) + std::numeric_limits<double>::min() ||
+                           (newton && std::abs(next - phi) <= kNewtonSettled * std::min(std::abs(next), 1.0)) ||
                            (hi_known && hi - lo <= 2.0 * kEps * hi);
     phi = next;
     if (converged) return Recovered{State{sign * phi, curve.stretch(phi)}, Status::ok, false};
@@ -157,14 +164,39 @@ Recovered recover_state(const Material& m, const Conserved& u, double rapidity_g
   return failed(Status::not_converged);
 }
 
+namespace {
+/// What the HLL flux needs of one state, from one exponential of φ and one of ln s.
+struct FaceState {
+  double slowest = 0.0, fastest = 0.0;  ///< Lagrangian characteristic speeds of C− and C+
+  Conserved u;
+  Flux f;
+};
+
+FaceState face_state(const Material& m, const State& st) {
+  const double s = st.stretch.value();
+  const double c = m.sound_speed(st.stretch);
+  const double ep = std::exp(st.rapidity), em = 1.0 / ep;
+  // cosh φ ± c sinh φ = ((1 ± c) e^φ + (1 ∓ c) e^−φ)/2: no cancellation for c → 1 and
+  // large |φ| (as characteristic_speeds); sinh φ from expm1, exact near 0.
+  const double cosh = 0.5 * (ep + em);
+  const double u = std::expm1(st.rapidity);
+  const double sinh = std::abs(st.rapidity) < 1.0 ? 0.5 * u * (u + 2.0) / (1.0 + u) : 0.5 * (ep - em);
+  FaceState out;
+  out.fastest = c / (s * 0.5 * ((1.0 + c) * ep + (1.0 - c) * em));
+  out.slowest = -c / (s * 0.5 * ((1.0 - c) * ep + (1.0 + c) * em));
+  out.u = Conserved{s / cosh, m.enthalpy_density(st.stretch) * s * sinh};
+  out.f = Flux{-std::tanh(st.rapidity), m.pressure(st.stretch)};
+  return out;
+}
+}  // namespace
+
 FaceFlux hll_flux(const Material& mL, const State& left, const Material& mR, const State& right) {
-  const double slowest = std::min(characteristic_speed(mL, left, -1), characteristic_speed(mR, right, -1));
-  const double fastest = std::max(characteristic_speed(mL, left, +1), characteristic_speed(mR, right, +1));
+  const FaceState l = face_state(mL, left), r = face_state(mR, right);
+  const double slowest = std::min(l.slowest, r.slowest);
+  const double fastest = std::max(l.fastest, r.fastest);
   // In label coordinates S− < 0 < S+ always: the HLL flux at X/t = 0 is the
   // flux of the intermediate state (Toro eq. 10.21).
-  const Flux f = (fastest * flux(mL, left) - slowest * flux(mR, right) +
-                  slowest * fastest * (conserved(mR, right) - conserved(mL, left))) /
-                 (fastest - slowest);
+  const Flux f = (fastest * l.f - slowest * r.f + slowest * fastest * (r.u - l.u)) / (fastest - slowest);
   FaceFlux out;
   out.velocity_left = out.velocity_right = -f[0];
   out.pressure = f[1];
