@@ -11,11 +11,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -146,7 +148,14 @@ int main(int argc, char** argv) {
     row("finite_volume", std::to_string(cells) + " cells per body, order 2", work, std::nan(""), r.seconds,
         std::nan(""), distance(r, reference));
   }
-  std::ofstream(out + "/multibody_precision.csv") << csv.str();
-  std::ofstream(out + "/multibody_precision.md") << md.str();
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  std::ofstream csv_file(out + "/multibody_precision.csv"), md_file(out + "/multibody_precision.md");
+  csv_file << csv.str();
+  md_file << md.str();
+  if (ec || !csv_file || !md_file) {
+    std::cerr << "multibody_precision: cannot write into " << out << "\n";
+    return 1;
+  }
   return 0;
 }
