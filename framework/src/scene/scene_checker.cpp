@@ -20,6 +20,15 @@ using schema::OneOf;
 
 // ---- Checked ------------------------------------------------------------------------------
 
+std::string Checked::path() const {
+  return parent_path == nullptr || parent_path->empty() ? name : *parent_path + "." + name;
+}
+
+std::shared_ptr<const std::string> Checked::path_of_entries() const {
+  if (!entries.empty()) return entries.front().parent_path;
+  return std::make_shared<const std::string>(path());
+}
+
 const Checked* Checked::find(std::string_view key) const {
   for (const Checked& e : entries)
     if (e.name == key) return &e;
@@ -28,7 +37,7 @@ const Checked* Checked::find(std::string_view key) const {
 
 const Checked& Checked::operator[](std::string_view key) const {
   if (const Checked* e = find(key)) return *e;
-  throw std::logic_error("scene loader: '" + path + "' has no field '" + std::string(key) + "'");
+  throw std::logic_error("scene loader: '" + path() + "' has no field '" + std::string(key) + "'");
 }
 
 Checked& Checked::operator[](std::string_view key) {
@@ -132,18 +141,18 @@ std::string quoted_list(const std::vector<std::string>& names) {
 // ---- Checker ------------------------------------------------------------------------------
 
 void Checker::fail(const Checked& at, const std::string& message, bool at_key) const {
-  sources_.fail(at.path, at_key ? at.key_mark : at.mark, message, at_key);
+  sources_.fail(at.path(), at_key ? at.key_mark : at.mark, message, at_key);
 }
 
 void Checker::wrong_type(const TreeValue& node, const Checked& at, const std::string& expected) const {
   fail(at, "must be " + expected + ", got " + describe_value(node));
 }
 
-Checked Checker::check(const TreeValue& node, const Key& key, const std::string& path, const YAML::Mark& key_mark) {
+Checked Checker::check(const TreeValue& node, const Key& key, std::shared_ptr<const std::string> parent_path,
+                       const std::string& name, const YAML::Mark& key_mark) {
   Checked out;
-  const std::size_t dot = path.rfind('.');
-  out.name = dot == std::string::npos ? path : path.substr(dot + 1);
-  out.path = path;
+  out.name = name;
+  out.parent_path = std::move(parent_path);
   out.kind = key.kind;
   out.dimension = key.dimension;
   // An empty value's mark points past it; its key's mark is where the reader looks.
@@ -251,10 +260,11 @@ Checked Checker::check_list(const TreeValue& node, const Key& key, Checked out) 
 
   std::set<std::string> seen;
   out.entries.reserve(size);
+  const auto self = std::make_shared<const std::string>(out.path());
   for (std::size_t index = 0; index < size; ++index) {
     const TreeValue item = node.item(index);
     const Key& entry_key = tuple ? key.fields[index] : key.fields.front();
-    Checked entry = check(item, entry_key, child_path(out.path, std::to_string(index)), item.mark());
+    Checked entry = check(item, entry_key, self, std::to_string(index), item.mark());
     if (key.unique && !entry.word.empty() && !seen.insert(entry.word).second)
       fail(entry, quoted(entry.word) + " is listed twice");
     out.entries.push_back(std::move(entry));
@@ -280,7 +290,8 @@ std::vector<Checker::Entry> Checker::entries_of(const TreeValue& map, const std:
 
 Checked Checker::check_map(const TreeValue& node, const Key& key, Checked out) {
   if (!node.is_map()) wrong_type(node, out, "a map");
-  const std::vector<Entry> entries = entries_of(node, out.path);
+  const auto self = std::make_shared<const std::string>(out.path());
+  const std::vector<Entry> entries = entries_of(node, *self);
   auto given = [&](const std::string& name) -> const Entry* {
     for (const Entry& e : entries)
       if (e.name == name) return &e;
@@ -295,9 +306,9 @@ Checked Checker::check_map(const TreeValue& node, const Key& key, Checked out) {
     const Key* selector = key.field(key.extension->selector);
     const Entry* e = given(selector->name);
     if (e == nullptr)
-      sources_.fail(child_path(out.path, selector->name), out.mark,
+      sources_.fail(child_path(*self, selector->name), out.mark,
                     "missing required key '" + selector->name + "' (" + selector->doc + ")");
-    const Checked selected = check(e->value, *selector, child_path(out.path, e->name), e->key.mark());
+    const Checked selected = check(e->value, *selector, self, e->name, e->key.mark());
     chosen = key.extension->fields(selected.word);
     for (const Key& k : chosen) keys.push_back(&k);
   }
@@ -309,7 +320,7 @@ Checked Checker::check_map(const TreeValue& node, const Key& key, Checked out) {
     std::vector<std::string> names;
     for (const Key* k : keys) names.push_back(k->name);
     const std::string near = suggestion(e.name, names);
-    sources_.fail(child_path(out.path, e.name), e.key.mark(),
+    sources_.fail(child_path(*self, e.name), e.key.mark(),
                   "unknown key '" + e.name + "'" +
                       (near.empty() ? "; expected one of: " + join(names) : " (did you mean '" + near + "'?)"),
                   true);
@@ -319,7 +330,7 @@ Checked Checker::check_map(const TreeValue& node, const Key& key, Checked out) {
   for (const Key* declared : keys) {
     const Key& k = *declared;
     const OneOf* group = group_of(key, k.name);
-    const std::string path = child_path(out.path, k.name);
+    const std::string path = child_path(*self, k.name);
     if (const Entry* e = given(k.name)) {
       if (k.only_if && !holds(*k.only_if, out))
         sources_.fail(path, e->key.mark(), "'" + k.name + "' " + condition_text(*k.only_if, out), true);
@@ -330,7 +341,7 @@ Checked Checker::check_map(const TreeValue& node, const Key& key, Checked out) {
                 path, e->key.mark(),
                 "give only one of " + quoted_list(group->keys) + ", not both '" + other + "' and '" + k.name + "'",
                 true);
-      out.entries.push_back(check(e->value, k, path, e->key.mark()));
+      out.entries.push_back(check(e->value, k, self, k.name, e->key.mark()));
       continue;
     }
     if (k.only_if && !holds(*k.only_if, out)) continue;
@@ -349,7 +360,7 @@ Checked Checker::check_map(const TreeValue& node, const Key& key, Checked out) {
       awaiting.awaiting = true;
       out.entries.push_back(std::move(awaiting));
     } else if (!std::holds_alternative<std::monostate>(k.fallback) || !is_scalar_kind(k.kind)) {
-      out.entries.push_back(absent(k, out));
+      out.entries.push_back(absent(k, out, self));
     }
   }
   return out;
@@ -357,24 +368,25 @@ Checked Checker::check_map(const TreeValue& node, const Key& key, Checked out) {
 
 Checked Checker::check_dictionary(const TreeValue& node, const Key& key, Checked out) {
   if (!node.is_map()) wrong_type(node, out, "a map of names");
-  const std::vector<Entry> entries = entries_of(node, out.path);
+  const auto self = std::make_shared<const std::string>(out.path());
+  const std::vector<Entry> entries = entries_of(node, *self);
   if (entries.size() > key.max_items)
     fail(out, "has " + std::to_string(entries.size()) + " entries; at most " + std::to_string(key.max_items) +
                   " are allowed");
   if (entries.size() < key.min_items) fail(out, "must have at least " + std::to_string(key.min_items) + " entry");
   for (const Entry& e : entries) {
     if (!is_identifier(e.name))
-      sources_.fail(child_path(out.path, e.name), e.key.mark(),
+      sources_.fail(child_path(*self, e.name), e.key.mark(),
                     "a name must be letters, digits, '_' and '-', got " + quoted(e.name), true);
-    out.entries.push_back(check(e.value, key.fields.front(), child_path(out.path, e.name), e.key.mark()));
+    out.entries.push_back(check(e.value, key.fields.front(), self, e.name, e.key.mark()));
   }
   return out;
 }
 
-Checked Checker::absent(const Key& key, const Checked& parent) {
+Checked Checker::absent(const Key& key, const Checked& parent, std::shared_ptr<const std::string> parent_path) {
   Checked out;
   out.name = key.name;
-  out.path = child_path(parent.path, key.name);
+  out.parent_path = std::move(parent_path);
   out.kind = key.kind;
   out.dimension = key.dimension;
   out.mark = parent.mark;
@@ -401,7 +413,7 @@ Checked Checker::derived_number(const Checked& parent, const std::string& name, 
                                 Dimension dimension) const {
   Checked out;
   out.name = name;
-  out.path = child_path(parent.path, name);
+  out.parent_path = parent.path_of_entries();
   out.kind = Kind::number;
   out.dimension = dimension;
   out.mark = out.key_mark = parent.mark;
@@ -414,7 +426,7 @@ Checked Checker::derived_number(const Checked& parent, const std::string& name, 
 Checked Checker::derived_text(const Checked& parent, const std::string& name, std::string text) const {
   Checked out;
   out.name = name;
-  out.path = child_path(parent.path, name);
+  out.parent_path = parent.path_of_entries();
   out.kind = Kind::text;
   out.mark = out.key_mark = parent.mark;
   out.given = false;
@@ -452,7 +464,7 @@ std::size_t flow_width(const Checked& c, int depth = 0) {
 /// list all in the same style.
 void emit(YAML::Emitter& out, const Checked& c, int depth, bool may_flow = true) {
   constexpr std::size_t kFlowWidth = 72;
-  if (c.awaiting) throw std::logic_error("scene loader: no value derived for '" + c.path + "'");
+  if (c.awaiting) throw std::logic_error("scene loader: no value derived for '" + c.path() + "'");
   if (is_scalar_kind(c.kind)) {
     const std::string text = scalar_text(c);
     if (c.kind == Kind::text && needs_quotes(text)) out << YAML::DoubleQuoted;

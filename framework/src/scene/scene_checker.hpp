@@ -5,6 +5,7 @@
 
 #include <yaml-cpp/mark.h>
 
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -18,8 +19,9 @@ namespace rigidity::detail {
 /// A value that passed its key's rules.
 struct Checked {
   std::string name;  ///< the key, or the list index
-  std::string path;  ///< dotted, "bodies.0.velocity": one string, not one per component (a scene of 10⁵ segments holds
-                     ///< 10⁶ values)
+  /// The dotted path of the map or list holding it, shared by all its entries (a scene of 10⁵
+  /// segments holds 10⁶ values: one string per value would be most of what loading holds).
+  std::shared_ptr<const std::string> parent_path;
   schema::Kind kind = schema::Kind::map;
   Dimension dimension = Dimension::dimensionless;
   YAML::Mark mark;               ///< of the value; for a default, of the enclosing map
@@ -32,6 +34,10 @@ struct Checked {
   bool flag = false;             ///< boolean
   std::vector<Checked> entries;  ///< list, tuple: the items; map, dictionary: the fields
 
+  /// "bodies.0.velocity"
+  [[nodiscard]] std::string path() const;
+  /// The parent_path of its entries.
+  [[nodiscard]] std::shared_ptr<const std::string> path_of_entries() const;
   [[nodiscard]] const Checked* find(std::string_view key) const;
   [[nodiscard]] bool has(std::string_view key) const { return find(key) != nullptr; }
   /// The field `key`, which the schema guarantees. \throws std::logic_error if absent
@@ -46,8 +52,10 @@ class Checker {
  public:
   Checker(const Sources& sources, UnitSystem units) : sources_(sources), units_(units) {}
 
-  /// Checks `node` (the value at `path`, whose key sits at `key_mark`) against `key`. \throws InputError
-  [[nodiscard]] Checked check(const TreeValue& node, const schema::Key& key, const std::string& path,
+  /// Checks `node` (the value `name` of the map or list at `parent_path`, none for the root,
+  /// whose key sits at `key_mark`) against `key`. \throws InputError
+  [[nodiscard]] Checked check(const TreeValue& node, const schema::Key& key,
+                              std::shared_ptr<const std::string> parent_path, const std::string& name,
                               const YAML::Mark& key_mark);
 
   /// A value derived by the loader, in natural units, as a default field of `parent`.
@@ -71,7 +79,7 @@ class Checker {
   Checked check_map(const TreeValue& node, const schema::Key& key, Checked out);
   Checked check_dictionary(const TreeValue& node, const schema::Key& key, Checked out);
   /// The value of an absent key that is neither required nor derived: its default.
-  Checked absent(const schema::Key& key, const Checked& parent);
+  Checked absent(const schema::Key& key, const Checked& parent, std::shared_ptr<const std::string> parent_path);
 
   [[nodiscard]] std::vector<Entry> entries_of(const TreeValue& map, const std::string& path) const;
   [[noreturn]] void wrong_type(const TreeValue& node, const Checked& at, const std::string& expected) const;

@@ -76,7 +76,7 @@ class SceneBuilder {
   }
 
  private:
-  [[nodiscard]] SourceLocation where(const Checked& c) const { return sources_.locate(c.path, c.mark); }
+  [[nodiscard]] SourceLocation where(const Checked& c) const { return sources_.locate(c.path(), c.mark); }
 
   /// `ref` names one of `names`; else an error with the closest one.
   void require_reference(const Checked& ref, const std::set<std::string>& names, const std::string& what) const {
@@ -345,7 +345,7 @@ UnitSystem read_units(const TreeValue& root, const schema::Key& schema, const So
   for (std::size_t e = 0; e < root.size(); ++e) {
     if (!root.key(e).is_scalar() || root.key(e).text() != "units") continue;
     Checker checker(sources, UnitSystem::natural);
-    const Checked units = checker.check(root.value(e), *schema.field("units"), {"units"}, root.key(e).mark());
+    const Checked units = checker.check(root.value(e), *schema.field("units"), nullptr, "units", root.key(e).mark());
     return units.word == "si" ? UnitSystem::si : UnitSystem::natural;
   }
   return UnitSystem::natural;
@@ -359,9 +359,10 @@ bool load_listed_plugins(const TreeValue& root, const schema::Key& schema, const
   for (std::size_t e = 0; e < root.size(); ++e) {
     if (!root.key(e).is_scalar() || root.key(e).text() != "plugins") continue;
     Checker checker(sources, UnitSystem::natural);
-    const Checked plugins = checker.check(root.value(e), *schema.field("plugins"), {"plugins"}, root.key(e).mark());
+    const Checked plugins =
+        checker.check(root.value(e), *schema.field("plugins"), nullptr, "plugins", root.key(e).mark());
     std::vector<PluginReference> references;
-    for (const Checked& p : plugins.entries) references.push_back({p.word, p.path, sources.locate(p.path, p.mark)});
+    for (const Checked& p : plugins.entries) references.push_back({p.word, p.path(), sources.locate(p.path(), p.mark)});
     load_scene_plugins(references, directory);
     return !references.empty();
   }
@@ -450,7 +451,7 @@ Scene load(std::string_view text, const std::string& source, const std::vector<s
     if (load_listed_plugins(tree.root(), schema, sources, directory))
       schema = schema::scene_schema();  // with their models
     Checker checker(sources, units);
-    return checker.check(tree.root(), schema, {}, tree.root().mark());
+    return checker.check(tree.root(), schema, nullptr, "", tree.root().mark());
   };
   Checked checked;
   try {
