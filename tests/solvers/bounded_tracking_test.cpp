@@ -136,6 +136,45 @@ TEST(ErrorBound, FallsWithTheTolerance) {
   }
 }
 
+// A gas bar between a piston and a Hooke bar against a wall: waves split at the contact and
+// the fronts of both bodies merge, so the fan steps may widen while merges dominate the bound.
+const std::string kGasAndHooke = R"(
+name: gas_and_hooke
+materials:
+  gas: {model: constant_sound_speed, sound_speed: 0.6, rest_density: 0.8}
+  soft: {model: hooke, wave_speed: 0.8, rest_density: 1.9}
+bodies:
+  - {name: a, material: gas, position: 0.0, length: 0.5, velocity: -0.2}
+  - {name: b, material: soft, position: 0.55, length: 1.5, velocity: 0.05}
+boundaries:
+  left: {type: piston, velocity: 0.1}
+  right: {type: wall, bonded: true}
+outputs: {snapshots: [{times: [8.0], quantities: [v, s], samples: 4001}]}
+)";
+
+TEST(ErrorBound, HoldsWhereFanStepsWidenWhileMergesDominate) {
+  const double tolerance = 1e-2;
+  const SceneRun coarse = run(kGasAndHooke, tolerance, 8.0);
+  const SceneRun fine = run(kGasAndHooke, tolerance / 10.0, 8.0);
+  ASSERT_GT(solver_number(coarse.result, "fronts_merged"), 0.0);
+  // The steps widened beyond the tolerance's 2 × tolerance (by at most 8 times)...
+  EXPECT_GT(solver_number(coarse.result, "fan_step_max"), 4.0 * tolerance);
+  EXPECT_LE(solver_number(coarse.result, "fan_step_max"), 16.0 * tolerance * (1.0 + 1e-12));
+  // ...and what they book still bounds the error: each run is within its bound of the truth.
+  const double bound = solver_number(coarse.result, "error_bound");
+  const double fine_bound = solver_number(fine.result, "error_bound");
+  EXPECT_LE(distance(coarse, fine), bound + fine_bound);
+  EXPECT_GT(distance(coarse, fine), 0.1 * bound) << "a bound far above the error says little";
+  EXPECT_LT(fine_bound, 0.2 * bound);
+}
+
+TEST(ErrorBound, FanStepsStayAtTheToleranceWithoutMerges) {
+  // One gas bar: nothing merges, so nothing widens the fan steps beyond 2 × tolerance.
+  const SceneRun r = run(kBouncingGas, 1e-3, 3.0);
+  EXPECT_EQ(solver_number(r.result, "fronts_merged"), 0.0);
+  EXPECT_EQ(solver_number(r.result, "fan_step_max"), 2e-3);
+}
+
 TEST(Geometry, LabPositionsIncreaseWithLabelAtEveryTolerance) {
   // The shock tube of configs/shock_tube.yaml at a coarse tolerance: every front's lab and
   // label positions stay consistent, so x grows with X by s/γ dX across every front.

@@ -60,6 +60,14 @@ int Tracker::merge_neighbours(int id, double t) {
       const Region& L = nodes_[np.prev].right;
       if (L.material != np.right.material || L.material != nq.right.material) continue;
       if (std::min(np.strength, nq.strength) * (nq.X_at(t) - np.X_at(t)) > best_cost) continue;
+      // Two fan steps of one family expand the same way, and each carries 2|ΔΨ| in its own
+      // invariant: together they span the sum, which the merged step may not (below). Most
+      // neighbours are steps of one fan (each between one and two fan steps wide): refused
+      // here, before the curves are evaluated. The margin covers a step's distance from its
+      // curve (star_mismatch_) and round-off.
+      if (np.front_kind == FrontKind::rarefaction && nq.front_kind == FrontKind::rarefaction &&
+          0.5 * (np.strength + nq.strength) > 2.0 * fan_step_ * (1.0 + 1e-9) + 2.0 * star_mismatch_)
+        continue;
       const double cost = merge_cost(p, q, t, nullptr);
       if (cost <= best_cost) {
         best_cost = cost;

@@ -259,6 +259,7 @@ void Tracker::wave(const Material& m, const State& outer, const State& star, int
     return;
   }
   // A rarefaction fan: states along the invariant of the other family, in steps of Ψ.
+  balance_fans();
   const double psi_outer = m.riemann_psi(outer.stretch), psi_star = m.riemann_psi(star.stretch);
   const double span = std::abs(psi_star - psi_outer);
   // Steps between one and two fan steps wide: a step that has grown through interactions is

@@ -19,6 +19,7 @@ class MeetingQueue {
   };
 
   [[nodiscard]] bool empty() const { return heap_.empty(); }
+  [[nodiscard]] std::size_t size() const { return heap_.size(); }
   [[nodiscard]] const Entry& top() const { return heap_.front(); }
 
   void set(int node, double t, std::uint64_t seq) {

@@ -216,6 +216,7 @@ RunResult Tracker::run() {
   result_.solver_numbers.emplace_back("error_droplets", error_droplets_ / total_length_);
   result_.solver_numbers.emplace_back("fronts_alive_max", static_cast<double>(live_fronts_max_));
   result_.solver_numbers.emplace_back("wave_resolution", coarsest_resolution_);
+  result_.solver_numbers.emplace_back("fan_step_max", widest_fan_step_);
   if (coarsest_resolution_ > scene_.solver.tolerance) {
     const auto two_digits = [](double v) {
       std::ostringstream os;

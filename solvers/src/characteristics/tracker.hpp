@@ -39,6 +39,12 @@ constexpr int kMaxFanSteps = 100000;
 /// that part's width (see fan_error), so a fan as wide as its body costs δ/4 per unit
 /// length, which the stability factor 2 of the bound makes δ/2: the tolerance.
 constexpr double kFanStepPerTolerance = 2.0;
+/// Fan steps may be coarsened, by kResolutionStep per fan split, up to this many times the
+/// width the tolerance sets, while the fan steps have booked less than kFanBalance × what the
+/// merges have (see Tracker::balance_fans): on random multi-body scenes the least bound for the
+/// work came with the fans booking up to twice what the merges book.
+constexpr double kMaxFanScale = 8.0;
+constexpr double kFanBalance = 2.0;
 /// A merge of two neighbouring fronts may cost at most this fraction of the tolerance's L1
 /// budget (tolerance × natural length of all bodies): thousands of merges fit in it.
 constexpr double kMergeFraction = 1.0;
@@ -303,7 +309,8 @@ class Tracker {
     merge_ = std::max(merge_, merge_base_);
     weak_merging_ = 0.5 * r * r;
     weak_ = 0.5 * r / places_;
-    fan_step_ = kFanStepPerTolerance * r;
+    fan_step_ = kFanStepPerTolerance * r * fan_scale_;
+    widest_fan_step_ = std::max(widest_fan_step_, fan_step_);
     front_cap_ = static_cast<double>(scene_.bodies.size()) * std::max(kMinFrontsPerBody, kFrontsPerBody / r);
   }
   /// A spray's droplets (a chaotic sequence of collisions that knock pieces off) book an
@@ -331,6 +338,24 @@ class Tracker {
     } else if (merge_ > merge_base_ && static_cast<double>(live_fronts_) < 0.5 * front_cap_) {
       merge_ = std::max(merge_base_, merge_ / 1.01);
     }
+  }
+  /// In a rough multi-body run the merges that hold the fronts to their cap book most of the
+  /// bound, while the fan steps, split to the tolerance, are most of the fronts (a fan a body
+  /// wide takes 1/(2 tolerance) of them and each crossing costs in proportion to the fronts'
+  /// square). At each fan split, while the fan steps have booked less than kFanBalance × what
+  /// the merges have, the fan step widens by kResolutionStep (at most kMaxFanScale times the
+  /// tolerance's); once they have booked more, it narrows by as much, back to the tolerance's.
+  /// A scene without merges (a shock tube, one body's fans) keeps fan steps of the tolerance.
+  double fan_scale_ = 1.0;
+  double widest_fan_step_ = 0.0;  ///< reported as fan_step_max
+  void balance_fans() {
+    const double scale = error_fans_ < kFanBalance * error_merges_
+                             ? std::min(kMaxFanScale, fan_scale_ * kResolutionStep)
+                             : std::max(1.0, fan_scale_ / kResolutionStep);
+    if (scale == fan_scale_) return;
+    fan_scale_ = scale;
+    fan_step_ = kFanStepPerTolerance * resolution_ * fan_scale_;
+    widest_fan_step_ = std::max(widest_fan_step_, fan_step_);
   }
   double error_merges_ = 0.0;                             ///< L1 error of fronts merged
   double error_droplets_ = 0.0;                           ///< L1 error of droplets kept with their piece
