@@ -48,6 +48,10 @@ class MeetingQueue {
     heap_.pop_back();
     const std::size_t i = static_cast<std::size_t>(at);
     if (i == heap_.size()) return;  // it was the last entry
+    if (i == 0) {
+      pop_root(last);
+      return;
+    }
     if (earlier(last, heap_[i])) {
       sift_up(i, last);
     } else {
@@ -97,6 +101,25 @@ class MeetingQueue {
       i = best;
     }
     place(i, e);
+  }
+
+  /// Removing the earliest meeting (what every crossing does): the entry that refills the
+  /// root is one of the latest, so instead of comparing it on the way down, the hole walks
+  /// down to a leaf along the earliest children and the entry rises from there (Floyd),
+  /// usually not at all.
+  void pop_root(const Entry& last) {
+    const std::size_t n = heap_.size();
+    std::size_t i = 0;
+    for (;;) {
+      const std::size_t first = kArity * i + 1;
+      if (first >= n) break;
+      std::size_t best = first;
+      const std::size_t end = first + kArity < n ? first + kArity : n;
+      for (std::size_t c = first + 1; c < end; ++c) best = earlier(heap_[c], heap_[best]) ? c : best;
+      place(i, heap_[best]);
+      i = best;
+    }
+    sift_up(i, last);
   }
 
   std::vector<Entry> heap_;
