@@ -79,6 +79,7 @@ class Rigid final : public Material {
   [[nodiscard]] double psi_min() const override { return -kInfinity; }
   /// Both families move at ±c: every front is a contact-like jump.
   [[nodiscard]] bool linearly_degenerate() const override { return true; }
+  [[nodiscard]] bool sound_at_light_speed() const override { return true; }
 };
 
 RIGIDITY_REGISTER_MATERIAL(Rigid);

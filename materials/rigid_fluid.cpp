@@ -80,6 +80,7 @@ class RigidFluid final : public Material {
   [[nodiscard]] double cavitation_pressure() const override { return 0.0; }
   /// c_s = 1: both families move at ±c.
   [[nodiscard]] bool linearly_degenerate() const override { return true; }
+  [[nodiscard]] bool sound_at_light_speed() const override { return true; }
 };
 
 RIGIDITY_REGISTER_MATERIAL(RigidFluid);

@@ -21,6 +21,7 @@ bool Tracker::valid(const Event& e) const {
       return nodes_[e.a].alive && nodes_[e.a].version == e.va && walls_[e.b].version == e.vb &&
              nodes_[e.a].attach == Attach::free;
     case EventType::piston: return walls_[e.a].version == e.va;
+    case EventType::arrival: return is_light(e.a) && light_[static_cast<std::size_t>(e.a)].version == e.va;
   }
   return false;
 }
@@ -72,6 +73,7 @@ void Tracker::handle(const Event& e) {
   const double t = e.t;
   switch (e.type) {
     case EventType::resolve: resolve(e.a, e.a, t); break;
+    case EventType::arrival: arrive(e.a, e.b, t); break;
     case EventType::gap: {
       const double x = 0.5 * (nodes_[e.a].x_at(t) + nodes_[e.b].x_at(t));
       if (rejoin(e.a, e.b, t, x)) break;

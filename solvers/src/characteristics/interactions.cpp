@@ -15,7 +15,7 @@ namespace rigidity::characteristics {
 void Tracker::schedule_meet(int a) {
   const Node& na = nodes_[a];
   const int b = na.next;
-  if (b != kNone) {
+  if (b != kNone && na.kind != NodeKind::light_store) {  // a light piece's store meets nothing
     const Node& nb = nodes_[b];
     const double closing = na.dXdt - nb.dXdt;
     if (closing > 0.0) {
@@ -628,6 +628,10 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   if (ends_moved || sol.parted || droplet != 0)
     for (int p : {left_piece, right_piece, new_piece})
       if (p != kNone) schedule_gaps_around(p);
+  // Light pieces take what was emitted into them off the node list, and their next arrivals
+  // follow their ends.
+  if (is_light(left_piece)) absorb_light(left_piece, t);
+  if (right_piece != left_piece && is_light(right_piece)) absorb_light(right_piece, t);
 }
 
 /// Bressan's idea at an interface or a contact, where a wave arriving splits in two: when

@@ -44,6 +44,16 @@ bool Tracker::locate(int body, double X, double t, Region& region, double& x) co
     const Node& le = nodes_[pieces_[piece].left_end];
     const Node& re = nodes_[pieces_[piece].right_end];
     if (X < le.X_at(t) || X > re.X_at(t)) continue;
+    if (is_light(piece)) {
+      bool found = false;
+      walk_light(piece, t, [&](double x_a, double, double X_a, double X_b, const State& state, bool last) {
+        if (found || (X >= X_b && !last)) return;  // at a front: the region right of it, as below
+        found = true;
+        region = Region{le.right.material, state};
+        x = x_a + (X - X_a) * label_density(state);
+      });
+      return found;
+    }
     int n = pieces_[piece].left_end;
     // The last node at or left of X (the region to its right holds X).
     for (int next = nodes_[n].next;
@@ -97,6 +107,24 @@ void Tracker::sample(const SampleTime& st) {
       }
       if (piece == order_.end()) break;
       if (X < nodes_[pieces_[*piece].left_end].X_at(t)) continue;  // in no piece
+      if (is_light(*piece)) {
+        // One walk along the light piece's regions for all the samples it holds.
+        const Material& m = *nodes_[pieces_[*piece].left_end].right.material;
+        const double X_end = nodes_[pieces_[*piece].right_end].X_at(t);
+        int taken = 0;
+        walk_light(*piece, t, [&](double x_a, double, double X_a, double X_b, const State& state, bool last) {
+          for (;;) {
+            const double Xi = l0 * (i + taken) / (snap.samples - 1);
+            if (i + taken >= snap.samples || Xi > X_end || (Xi >= X_b && !last)) return;
+            const double x = x_a + (Xi - X_a) * label_density(state);
+            for (Quantity q : snap.quantities)
+              recorder_.snapshot(SnapshotSample{t, static_cast<int>(b), Xi, q, quantity_value(q, m, state, Xi, x)});
+            ++taken;
+          }
+        });
+        i += std::max(taken, 1) - 1;
+        continue;
+      }
       for (int next = nodes_[n].next;
            next != kNone && nodes_[next].kind != NodeKind::right_end && nodes_[next].X_at(t) <= X;
            next = nodes_[n].next)
@@ -114,6 +142,15 @@ void Tracker::totals(double t, double& energy, double& momentum) const {
   energy = momentum = 0.0;
   for (const Piece& piece : pieces_) {
     if (piece.left_end == kNone) continue;  // rejoined into another piece
+    const int index = static_cast<int>(&piece - pieces_.data());
+    if (is_light(index)) {
+      const Material& m = *nodes_[piece.left_end].right.material;
+      walk_light(index, t, [&](double, double, double X_a, double X_b, const State& state, bool) {
+        energy += (X_b - X_a) * energy_density(m, state);
+        momentum += (X_b - X_a) * momentum_density(m, state);
+      });
+      continue;
+    }
     for (int n = piece.left_end; nodes_[n].kind != NodeKind::right_end; n = nodes_[n].next) {
       const Node& node = nodes_[n];
       const double dX = nodes_[node.next].X_at(t) - node.X_at(t);

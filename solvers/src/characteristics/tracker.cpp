@@ -160,6 +160,10 @@ RunResult Tracker::run() {
       sample(samples_.pop());
       continue;
     }
+    if (!light_made_ && t_event > 0.0) {
+      make_light(0.0);  // once every discontinuity of t = 0 is resolved
+      continue;
+    }
     if (t_event > scene_.t_end) break;
     if (recorder_.poll(t_event, live_fronts_, result_.stats.interactions)) break;  // a budget, Ctrl-C; progress
     if (rare_first) {
@@ -186,10 +190,12 @@ RunResult Tracker::run() {
   for (int side = 0; side < 2; ++side) flush_wall(side, t_end);
   for (std::size_t id = 0; id < nodes_.size(); ++id) {
     Node& n = nodes_[id];
-    if (!n.alive) continue;
+    if (!n.alive || n.kind == NodeKind::light_store) continue;
     if (n.kind == NodeKind::front) account_front_end(static_cast<int>(id), t_end);
     record_segment(n, t_end);
   }
+  for (std::size_t piece = 0; piece < light_.size(); ++piece)
+    if (is_light(static_cast<int>(piece))) record_light_segments(static_cast<int>(piece), t_end);
   double error_fans_alive = 0.0;
   for (std::size_t id = 0; id < nodes_.size(); ++id) {
     Node& n = nodes_[id];
@@ -250,7 +256,21 @@ RunResult Tracker::run() {
       r.x_left = nodes_[piece.left_end].x_at(t_end);
       r.x_right = nodes_[piece.right_end].x_at(t_end);
       double mass = 0.0, mass_velocity = 0.0;
-      for (int n = piece.left_end; nodes_[n].kind != NodeKind::right_end; n = nodes_[n].next) {
+      if (is_light(parts[k])) {
+        const Material& m = *nodes_[piece.left_end].right.material;
+        walk_light(parts[k], t_end, [&](double, double, double X_a, double X_b, const State& state, bool) {
+          const double dX = X_b - X_a;
+          mass += m.rest_density() * dX;
+          mass_velocity += m.rest_density() * dX * std::tanh(state.rapidity);
+          r.energy += dX * energy_density(m, state);
+          r.momentum += dX * momentum_density(m, state);
+          const EnergyParts split = energy_parts(m, state);
+          r.kinetic_energy += dX * split.kinetic;
+          r.internal_energy += dX * split.internal;
+          r.rest_energy += dX * split.rest;
+        });
+      }
+      for (int n = piece.left_end; !is_light(parts[k]) && nodes_[n].kind != NodeKind::right_end; n = nodes_[n].next) {
         const Node& node = nodes_[n];
         const double dX = nodes_[node.next].X_at(t_end) - node.X_at(t_end);
         const Material& m = *node.right.material;

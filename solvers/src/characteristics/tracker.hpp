@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <deque>
 #include <limits>
 #include <memory>
 #include <string>
@@ -79,7 +80,8 @@ constexpr double kMergeEstimateMargin = 1.1;
 /// How many fronts of the other family a merge of two fronts of one family may reach across.
 constexpr int kMergeReach = 8;
 
-enum class NodeKind : std::uint8_t { front, interface, left_end, right_end };
+/// light_store: the one node between the ends of a light piece (see LightPiece).
+enum class NodeKind : std::uint8_t { front, interface, left_end, right_end, light_store };
 /// What a body end touches.
 enum class Attach : std::uint8_t { free, boundary, body };
 
@@ -138,14 +140,42 @@ struct Wall {
   }
 };
 
+/// A front of a light piece, kept off the node list: it moves on the lab line
+/// x = intercept + family t from where it started until it reaches the end it runs to.
+struct LightFront {
+  double intercept = 0.0;
+  double j_ahead = 0.0, j_behind = 0.0;  ///< its own invariant on the side it runs into, and behind it
+  double t0 = 0.0, x0 = 0.0;             ///< where it started (its segment in fronts.csv)
+  [[nodiscard]] double x_at(double t, int family) const { return intercept + family * t; }
+};
+
+/// A piece of a material whose sound travels at light speed and which carries any tension
+/// (`rigid`): every front is a jump of one invariant moving at ±c in the lab whatever the
+/// state, so fronts of the two families cross without changing each other's path or jump
+/// (J+ and J− are carried, each by its own family). The piece keeps its fronts in two
+/// queues in the order they run, and visits no crossing: a front costs its emission at one
+/// end and its arrival at the other, O(fronts) per crossing time where a crossing-by-crossing
+/// tracker pays O(fronts²). The node list holds the ends and one light_store node between
+/// them: the left end's region is the state next to the left end, the store's the state next
+/// to the right end. An arriving front is put back on the list for the end's Riemann problem
+/// (resolve_group, as for any piece), and what that problem emits into the piece is taken off
+/// it again (absorb_light). States between are built from the two invariants where asked for
+/// (samples, totals), exactly as a crossing builds its star.
+struct LightPiece {
+  int store = kNone;
+  std::deque<LightFront> plus;   ///< C+ fronts, the one nearest the right end first
+  std::deque<LightFront> minus;  ///< C− fronts, the one nearest the left end first
+  std::uint32_t version = 0;     ///< of its arrival events
+};
+
 /// Events other than nodes meeting (those live in MeetingQueue).
-enum class EventType : std::uint8_t { resolve, gap, wall_gap, piston };
+enum class EventType : std::uint8_t { resolve, gap, wall_gap, piston, arrival };
 
 struct Event {
   double t;
   std::uint64_t seq;
   EventType type;
-  int a, b;  ///< nodes (b: wall side 0/1 for wall_gap; a: wall side for piston)
+  int a, b;  ///< nodes (b: wall side 0/1 for wall_gap; a: wall side for piston; a: piece, b: family for arrival)
   std::uint32_t va, vb;
 };
 
@@ -265,6 +295,24 @@ class Tracker {
   bool room_for_end(int piece, int side, double x, double t) const;
   void set_attach(int end, Attach attach, int partner, double t);
   void flush_wall(int side, double t);
+  // ---- light pieces (light.cpp) ----------------------------------------------------------
+  [[nodiscard]] bool is_light(int piece) const {
+    return piece >= 0 && static_cast<std::size_t>(piece) < light_.size() && light_[piece].store != kNone;
+  }
+  void make_light(double t);
+  void schedule_arrivals(int piece);
+  void arrive(int piece, int family, double t);
+  void absorb_light(int piece, double t);
+  bool merge_light(int piece, int family, double t);
+  [[nodiscard]] State light_state(const Material& m, double j_plus, double j_minus) const;
+  [[nodiscard]] double invariant(const Material& m, const State& st, int family) const {
+    return st.rapidity + family * memo_->psi(m, st.stretch);
+  }
+  /// The regions of a light piece at time t, left to right: visit(x_a, x_b, X_a, X_b, state)
+  /// (labels from the left end's, by the label density of each region).
+  template <class Visit>
+  void walk_light(int piece, double t, Visit&& visit) const;
+  void record_light_segments(int piece, double t);
   // ---- outputs --------------------------------------------------------------------------
   void record_segment(Node& n, double t);
   void account_front_end(int id, double t);
@@ -296,7 +344,7 @@ class Tracker {
   long suppressed_ = 0;                 ///< weak waves held back
   double merge_base_ = 0.0;             ///< largest L1 error (strength × distance) of a merge while fronts are few
   double merge_ = 0.0;                  ///< the same now: raised while the live fronts exceed front_cap_
-  double front_cap_ = 0.0;
+  double front_cap_ = 0.0;              ///< per body
   /// The thresholds that set how finely the waves are resolved: the tolerance, unless the
   /// droplets of a spray have booked more than it (see rebalance).
   int places_ = 1;  ///< interfaces and contacts among which weak_ shares its budget
@@ -307,11 +355,12 @@ class Tracker {
     coarsest_resolution_ = std::max(coarsest_resolution_, r);
     merge_base_ = kMergeFraction * r * r * total_length_;
     merge_ = std::max(merge_, merge_base_);
+    merge_light_ = std::max(merge_light_, merge_base_);
     weak_merging_ = 0.5 * r * r;
     weak_ = 0.5 * r / places_;
     fan_step_ = kFanStepPerTolerance * r * fan_scale_;
     widest_fan_step_ = std::max(widest_fan_step_, fan_step_);
-    front_cap_ = static_cast<double>(scene_.bodies.size()) * std::max(kMinFrontsPerBody, kFrontsPerBody / r);
+    front_cap_ = std::max(kMinFrontsPerBody, kFrontsPerBody / r);  // per body
   }
   /// A spray's droplets (a chaotic sequence of collisions that knock pieces off) book an
   /// error that does not fall with the tolerance, while resolving the waves around them to
@@ -329,16 +378,27 @@ class Tracker {
   }
   /// A solution that grows rough (a pulse scattered by many contacts into more and more
   /// waves) cannot be held to a fixed L1 error by a bounded number of fronts. Work is bounded
-  /// first: while more fronts live than front_cap_, the cost a merge may have grows by 1 %
+  /// first: while more fronts live than front_cap_ per body, the cost a merge may have grows by 1 %
   /// per interaction, and falls back towards merge_base_ once they are half as many. The
   /// bound reports what it cost.
   void steer_merges() {
-    if (static_cast<double>(live_fronts_) > front_cap_) {
-      merge_ = std::min(merge_ * 1.01, kMergeCeiling * merge_base_);
-    } else if (merge_ > merge_base_ && static_cast<double>(live_fronts_) < 0.5 * front_cap_) {
-      merge_ = std::max(merge_base_, merge_ / 1.01);
+    const double bodies = static_cast<double>(scene_.bodies.size());
+    steer(merge_, static_cast<double>(live_fronts_ - light_fronts_), (bodies - light_bodies_) * front_cap_);
+    steer(merge_light_, static_cast<double>(light_fronts_), kLightCap * light_bodies_ * front_cap_);
+  }
+  void steer(double& merge, double fronts, double cap) const {
+    if (fronts > cap) {
+      merge = std::min(merge * 1.01, kMergeCeiling * merge_base_);
+    } else if (merge > merge_base_ && fronts < 0.5 * cap) {
+      merge = std::max(merge_base_, merge / 1.01);
     }
   }
+  /// Fronts of light pieces cost O(1) per crossing time each, not O(fronts): they have a cap
+  /// of their own, this many times the others', and merges steered by it.
+  static constexpr double kLightCap = 10.0;
+  double merge_light_ = 0.0;
+  long light_fronts_ = 0;
+  double light_bodies_ = 0.0;  ///< bodies whose one piece is light
   /// In a rough multi-body run the merges that hold the fronts to their cap book most of the
   /// bound, while the fan steps, split to the tolerance, are most of the fronts (a fan a body
   /// wide takes 1/(2 tolerance) of them and each crossing costs in proportion to the fronts'
@@ -398,7 +458,9 @@ class Tracker {
   std::vector<Node> nodes_;
   std::vector<int> free_nodes_;
   std::vector<Piece> pieces_;
-  std::vector<int> order_;  ///< pieces in lab order, left to right
+  std::vector<int> order_;         ///< pieces in lab order, left to right
+  std::vector<LightPiece> light_;  ///< by piece (store kNone: an ordinary piece)
+  bool light_made_ = false;
   Wall walls_[2];
   std::vector<Event> queue_;  ///< rare events (a heap, EventLater): gaps, pistons, t = 0
   MeetingQueue meetings_;     ///< fronts meeting fronts, ends, interfaces
@@ -415,5 +477,40 @@ class Tracker {
   std::vector<int> group_, emitted_left_, emitted_right_, touched_;
   WaveStates wave_left_, wave_right_;
 };
+
+template <class Visit>
+void Tracker::walk_light(int piece, double t, Visit&& visit) const {
+  const LightPiece& lp = light_[piece];
+  const Node& left = nodes_[pieces_[piece].left_end];
+  const Node& right = nodes_[pieces_[piece].right_end];
+  const Material& m = *left.right.material;
+  const double x_left = left.x_at(t), x_right = right.x_at(t);
+  double x = x_left, X = left.X_at(t);
+  State state = left.right.state;  // next to the left end: exactly as stored
+  double j_plus = invariant(m, state, +1), j_minus = invariant(m, state, -1);
+  // C+ fronts from the leftmost (the back of their queue), C− from the leftmost (the front).
+  auto p = lp.plus.rbegin();
+  auto q = lp.minus.begin();
+  for (;;) {
+    const double xp = p != lp.plus.rend() ? std::clamp(p->x_at(t, +1), x_left, x_right) : kInf;
+    const double xq = q != lp.minus.end() ? std::clamp(q->x_at(t, -1), x_left, x_right) : kInf;
+    const bool last = p == lp.plus.rend() && q == lp.minus.end();
+    const double x_next = last ? x_right : std::min(xp, xq);
+    if (last) state = nodes_[lp.store].right.state;  // next to the right end: exactly as stored
+    const double X_next = X + (x_next - x) / label_density(state);
+    visit(x, x_next, X, X_next, state, last);
+    if (last) return;
+    x = x_next;
+    X = X_next;
+    if (xp <= xq) {
+      j_plus = p->j_ahead;
+      ++p;
+    } else {
+      j_minus = q->j_behind;
+      ++q;
+    }
+    state = light_state(m, j_plus, j_minus);
+  }
+}
 
 }  // namespace rigidity::characteristics

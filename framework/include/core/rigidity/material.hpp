@@ -86,6 +86,11 @@ class Material {
   /// True if both wave families are linearly degenerate: every wave is a jump
   /// moving at the characteristic speed, and J∓ is continuous across a ± front.
   [[nodiscard]] virtual bool linearly_degenerate() const { return false; }
+  /// True if sound travels at c at every admissible stretch: every wave is then a jump
+  /// moving at ±c in the lab whatever the state, and waves of the two families cross
+  /// without changing each other's path (the front tracker need not visit their crossings).
+  /// \post implies linearly_degenerate() and sound_speed(s) == 1 everywhere.
+  [[nodiscard]] virtual bool sound_at_light_speed() const { return false; }
 
   /// Empty if s is admissible, else a sentence saying why not.
   [[nodiscard]] std::string admissibility_violation(Stretch s) const;

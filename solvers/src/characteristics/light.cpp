@@ -1,0 +1,313 @@
+// Light pieces: bodies whose sound travels at light speed keep their fronts in two queues
+// and visit no crossing (see LightPiece in tracker.hpp).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <vector>
+
+#include "rigidity/errors.hpp"
+#include "tracker.hpp"
+
+namespace rigidity::characteristics {
+
+/// How many fronts of the other family a merge of two light fronts may reach across.
+constexpr std::size_t kLightMergeReach = 16;
+
+State Tracker::light_state(const Material& m, double j_plus, double j_minus) const {
+  const Solved<Stretch> s = memo_->stretch_at_psi(m, 0.5 * (j_plus - j_minus));
+  if (!s.ok())
+    throw NumericalError(
+        "a state between light-speed fronts could not be found (Ψ = " + number(0.5 * (j_plus - j_minus)) + ")");
+  return State{0.5 * (j_plus + j_minus), s.value};
+}
+
+/// Once the discontinuities of t = 0 are resolved, every piece of one material whose sound
+/// travels at light speed and which carries any tension takes its fronts off the node list.
+void Tracker::make_light(double t) {
+  light_made_ = true;
+  light_.resize(pieces_.size());
+  for (std::size_t piece = 0; piece < pieces_.size(); ++piece) {
+    const Piece& pc = pieces_[piece];
+    if (pc.left_end == kNone) continue;
+    const Material* m = nodes_[pc.left_end].right.material;
+    if (m == nullptr || !m->sound_at_light_speed() || m->cavitation_pressure() > -kInf) continue;
+    bool one_material = true;
+    for (int n = nodes_[pc.left_end].next; n != pc.right_end; n = nodes_[n].next)
+      one_material = one_material && nodes_[n].kind == NodeKind::front && nodes_[n].right.material == m;
+    if (!one_material) continue;
+    LightPiece& lp = light_[piece];
+    light_bodies_ += 1.0;
+    // C+ fronts nearest the right end first: the list read from the right.
+    for (int n = nodes_[pc.right_end].prev; n != pc.left_end; n = nodes_[n].prev) {
+      const Node& f = nodes_[n];
+      const State& left = nodes_[f.prev].right.state;
+      const State& right = f.right.state;
+      const double x = f.x_at(t);
+      if (f.family > 0) {
+        lp.plus.push_back(LightFront{x - t, invariant(*m, right, +1), invariant(*m, left, +1), t, x});
+      } else {
+        lp.minus.push_front(LightFront{x + t, invariant(*m, left, -1), invariant(*m, right, -1), t, x});
+      }
+    }
+    const Region next_to_right = nodes_[nodes_[pc.right_end].prev].right;
+    long fronts = 0;
+    for (int n = nodes_[pc.left_end].next; n != pc.right_end;) {
+      const int next = nodes_[n].next;
+      kill_node(n, t);  // records its segment up to t
+      ++fronts;
+      n = next;
+    }
+    live_fronts_ += fronts;
+    light_fronts_ += fronts;
+    const int store = new_node(NodeKind::light_store, static_cast<int>(piece));
+    Node& st = nodes_[store];
+    st.front_kind = FrontKind::interface;
+    st.X0 = 0.5 * (nodes_[pc.left_end].X0 + nodes_[pc.right_end].X0);
+    st.t0 = t;
+    st.right = next_to_right;
+    link(pc.left_end, store);
+    link(store, pc.right_end);
+    lp.store = store;
+    schedule_meet(pc.left_end);
+    schedule_arrivals(static_cast<int>(piece));
+  }
+}
+
+/// The next front to reach each end of a light piece: the oldest of each queue, on its lab
+/// line, against the end's line.
+void Tracker::schedule_arrivals(int piece) {
+  LightPiece& lp = light_[piece];
+  ++lp.version;
+  // Not before the ends last moved, nor before now (round-off in a line's intercept).
+  const double t_min =
+      std::max({nodes_[pieces_[piece].left_end].t0, nodes_[pieces_[piece].right_end].t0, last_interaction_t_, 0.0});
+  if (!lp.plus.empty()) {
+    const Node& end = nodes_[pieces_[piece].right_end];
+    // intercept + t = x0 + v (t − t0)
+    const double t = (end.x0 - end.dxdt * end.t0 - lp.plus.front().intercept) / (1.0 - end.dxdt);
+    const double at = std::max(t, t_min);
+    if (at <= scene_.t_end) push(at, EventType::arrival, piece, +1, lp.version, 0);
+  }
+  if (!lp.minus.empty()) {
+    const Node& end = nodes_[pieces_[piece].left_end];
+    // intercept − t = x0 + v (t − t0)
+    const double t = (lp.minus.front().intercept - end.x0 + end.dxdt * end.t0) / (1.0 + end.dxdt);
+    const double at = std::max(t, t_min);
+    if (at <= scene_.t_end) push(at, EventType::arrival, piece, -1, lp.version, 0);
+  }
+}
+
+/// The oldest front of one family reaches its end: it goes back on the node list, next to
+/// the end, and the end's Riemann problem is solved as for any piece.
+void Tracker::arrive(int piece, int family, double t) {
+  LightPiece& lp = light_[piece];
+  const Piece& pc = pieces_[piece];
+  const Material& m = *nodes_[lp.store].right.material;
+  const int end = family > 0 ? pc.right_end : pc.left_end;
+  const LightFront f = family > 0 ? lp.plus.front() : lp.minus.front();
+  (family > 0 ? lp.plus : lp.minus).pop_front();
+  --light_fronts_;  // a front on the node list again
+  const int id = new_node(NodeKind::front, piece);
+  Node& n = nodes_[id];
+  n.family = family;
+  n.front_kind = FrontKind::contact;
+  n.t0 = f.t0;
+  n.x0 = f.x0;
+  n.dxdt = family;
+  n.X0 = nodes_[end].X_at(t);
+  n.born = f.t0;
+  n.strength = std::abs(f.j_behind - f.j_ahead);
+  if (family > 0) {
+    // ahead of it: the state next to the right end; behind it: J+ it brings, J− there.
+    const Region ahead = nodes_[lp.store].right;
+    n.right = ahead;
+    nodes_[lp.store].right = Region{&m, light_state(m, f.j_behind, invariant(m, ahead.state, -1))};
+    link(lp.store, id);
+    link(id, pc.right_end);
+    resolve(id, pc.right_end, t);
+  } else {
+    const State& ahead = nodes_[pc.left_end].right.state;
+    n.right = Region{&m, light_state(m, invariant(m, ahead, +1), f.j_behind)};
+    link(pc.left_end, id);
+    link(id, lp.store);
+    resolve(pc.left_end, id, t);
+  }
+}
+
+/// What an end's Riemann problem emitted into a light piece (fronts on its node list, next to
+/// the end) goes into the queues; the store and the left end keep the states next to the ends.
+void Tracker::absorb_light(int piece, double t) {
+  LightPiece& lp = light_[piece];
+  const Piece& pc = pieces_[piece];
+  const Material& m = *nodes_[lp.store].right.material;
+  // C+ fronts emitted at the left end: between it and the store, nearest the end last.
+  std::vector<int> plus, minus;
+  for (int n = nodes_[pc.left_end].next; n != lp.store; n = nodes_[n].next) plus.push_back(n);
+  for (int n = nodes_[lp.store].next; n != pc.right_end; n = nodes_[n].next) minus.push_back(n);
+  if (plus.empty() && minus.empty()) {
+    schedule_arrivals(piece);
+    return;
+  }
+  for (const int id : plus) {
+    const Node& f = nodes_[id];
+    if (f.family < 0) {
+      for (int k = pc.left_end; k != kNone; k = nodes_[k].next)
+        fprintf(stderr, "node %d kind %d family %d X %.6g x %.6g\n", k, (int)nodes_[k].kind, nodes_[k].family,
+                nodes_[k].X_at(t), nodes_[k].x_at(t));
+      fprintf(stderr, "piece %d t %.6g store %d\n", piece, t, lp.store);
+      throw NumericalError("a light piece's left end emitted a C− front");
+    }
+    const double x = f.x_at(t);
+    lp.plus.push_back(
+        LightFront{x - t, invariant(m, f.right.state, +1), invariant(m, nodes_[f.prev].right.state, +1), t, x});
+  }
+  if (!minus.empty()) nodes_[lp.store].right = nodes_[minus.back()].right;  // next to the right end
+  for (auto it = minus.rbegin(); it != minus.rend(); ++it) {
+    const Node& f = nodes_[*it];
+    if (f.family > 0) throw NumericalError("a light piece's right end emitted a C+ front");
+  }
+  for (const int id : minus) {
+    const Node& f = nodes_[id];
+    const double x = f.x_at(t);
+    lp.minus.push_back(
+        LightFront{x + t, invariant(m, nodes_[f.prev].right.state, -1), invariant(m, f.right.state, -1), t, x});
+  }
+  for (const int id : plus) kill_node(id, t);
+  for (const int id : minus) kill_node(id, t);
+  link(pc.left_end, lp.store);
+  link(lp.store, pc.right_end);
+  live_fronts_ += static_cast<long>(plus.size() + minus.size());
+  light_fronts_ += static_cast<long>(plus.size() + minus.size());
+  if (!plus.empty()) merge_light(piece, +1, t);
+  if (!minus.empty()) merge_light(piece, -1, t);
+  schedule_arrivals(piece);
+}
+
+/// The newest front of one family, just emitted at its end, and the one emitted before it
+/// (its neighbour in the queue) become one front when that costs no more than a merge may.
+/// The merged front's place keeps the natural length of the piece, so that every end and
+/// every other front keeps its lab path: regions between the new front and that place take
+/// the invariant behind the new front, those beyond it the one ahead of the old front. For
+/// two steps of one sign the place lies between them; for a bump (steps of opposite signs)
+/// beyond the old front, as far as the next front of the family. Fronts of the other family
+/// on the way keep their jumps.
+bool Tracker::merge_light(int piece, int family, double t) {
+  LightPiece& lp = light_[piece];
+  std::deque<LightFront>& queue = family > 0 ? lp.plus : lp.minus;
+  if (queue.size() < 2) return false;
+  LightFront& older = queue[queue.size() - 2];
+  const LightFront& newer = queue.back();
+  const double j_between = older.j_behind;   // = newer.j_ahead
+  const double j_near_old = older.j_ahead;   // ahead of the older front
+  const double j_near_new = newer.j_behind;  // behind the newer one
+  const double x_old = older.x_at(t, family), x_new = newer.x_at(t, family);
+  // Most merges are refused here, before any state is built: the weaker front times half
+  // the lab distance between the two (a merge costs about the weaker front times the natural
+  // length between them, γ/s times the lab length) already costs more than a merge may.
+  const double weaker = std::min(std::abs(j_between - j_near_old), std::abs(j_near_new - j_between));
+  if (weaker * std::abs(x_old - x_new) * 0.5 > merge_light_) return false;
+  // How far the merged front may go: the next front of the family ahead, or the far end.
+  const double x_limit = queue.size() >= 3
+                             ? queue[queue.size() - 3].x_at(t, family)
+                             : nodes_[family > 0 ? pieces_[piece].right_end : pieces_[piece].left_end].x_at(t);
+  const Material& m = *nodes_[lp.store].right.material;
+  const std::deque<LightFront>& other = family > 0 ? lp.minus : lp.plus;
+  const State& next_to_end = family > 0 ? nodes_[pieces_[piece].left_end].right.state : nodes_[lp.store].right.state;
+  struct Part {
+    double from, to;        ///< lab extent, in the direction away from the new front's end
+    double j_other, j_old;  ///< the other family's invariant there, this family's now
+  };
+  std::vector<Part> parts;
+  double j_other = invariant(m, next_to_end, -family);
+  double cursor = x_new;
+  const auto beyond = [&](double x, double limit) { return family > 0 ? x >= limit : x <= limit; };
+  for (const LightFront& o : other) {  // the other family's fronts nearest the new front's end first
+    const double xo = o.x_at(t, -family);
+    if (!beyond(xo, cursor) || xo == cursor) continue;
+    if (beyond(xo, x_limit)) break;
+    if (parts.size() >= kLightMergeReach) break;
+    // Up to xo, split at the older front.
+    if (!beyond(cursor, x_old) && beyond(xo, x_old)) {
+      parts.push_back(Part{cursor, x_old, j_other, j_between});
+      cursor = x_old;
+    }
+    parts.push_back(Part{cursor, xo, j_other, beyond(cursor, x_old) ? j_near_old : j_between});
+    j_other = o.j_behind;  // past it, away from this end: the side it comes from
+    cursor = xo;
+  }
+  const double x_stop = parts.size() >= kLightMergeReach ? cursor : x_limit;
+  if (!beyond(cursor, x_old)) {
+    parts.push_back(Part{cursor, x_old, j_other, j_between});
+    cursor = x_old;
+  }
+  if (beyond(x_stop, cursor) && x_stop != cursor) parts.push_back(Part{cursor, x_stop, j_other, j_near_old});
+  const auto label_per_lab = [&](double j_self, double j_o) {
+    const State st = family > 0 ? light_state(m, j_self, j_o) : light_state(m, j_o, j_self);
+    return 1.0 / label_density(st);
+  };
+  // Natural length now and as the merged front sweeps away from the new one: parts it has
+  // passed take j_near_new, the others j_near_old; F = new length − old length, linear on
+  // each part.
+  const std::size_t n = parts.size();
+  std::vector<double> density_old(n), density_new(n), density_near_old(n);
+  double change = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double length = std::abs(parts[i].to - parts[i].from);
+    density_old[i] = label_per_lab(parts[i].j_old, parts[i].j_other);
+    density_new[i] = label_per_lab(j_near_new, parts[i].j_other);
+    density_near_old[i] = parts[i].j_old == j_near_old ? density_old[i] : label_per_lab(j_near_old, parts[i].j_other);
+    change += (density_near_old[i] - density_old[i]) * length;
+  }
+  double place = kInf;
+  std::size_t split = 0;
+  double swept_in_split = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double length = std::abs(parts[i].to - parts[i].from);
+    const double rate = density_new[i] - density_near_old[i];
+    const double next = change + rate * length;
+    if ((change <= 0.0 && next >= 0.0) || (change >= 0.0 && next <= 0.0)) {
+      swept_in_split = rate == 0.0 ? 0.0 : std::clamp(-change / rate, 0.0, length);
+      place = parts[i].from + family * swept_in_split;
+      split = i;
+      break;
+    }
+    change = next;
+  }
+  if (!std::isfinite(place)) return false;
+  const double margin = 64.0 * kEps * (1.0 + std::abs(place));
+  if (!(beyond(place, x_new + family * margin) && beyond(x_stop - family * margin, place))) return false;
+  // What it costs: |δJ| of this family times the natural length it changes over.
+  double cost = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double length = std::abs(parts[i].to - parts[i].from);
+    const double swept = i < split ? length : i == split ? swept_in_split : 0.0;
+    cost += density_old[i] *
+            (std::abs(j_near_new - parts[i].j_old) * swept + std::abs(j_near_old - parts[i].j_old) * (length - swept));
+  }
+  if (cost > merge_light_) return false;
+  error_merges_ += cost;
+  ++merged_;
+  if (want_fronts_ && t > older.t0) {
+    recorder_.front(FrontSegment{older.t0, older.x0, t, x_old, FrontKind::contact, family});
+  }
+  older.j_behind = j_near_new;
+  older.intercept = place - family * t;
+  older.t0 = t;
+  older.x0 = place;
+  queue.pop_back();
+  --live_fronts_;
+  --light_fronts_;
+  return true;
+}
+
+void Tracker::record_light_segments(int piece, double t) {
+  if (!want_fronts_) return;
+  for (int family : {+1, -1}) {
+    for (const LightFront& f : family > 0 ? light_[piece].plus : light_[piece].minus) {
+      if (t > f.t0) recorder_.front(FrontSegment{f.t0, f.x0, t, f.x_at(t, family), FrontKind::contact, family});
+    }
+  }
+}
+
+}  // namespace rigidity::characteristics

@@ -1,0 +1,148 @@
+// Bodies whose sound travels at light speed (`rigid`): the front tracker keeps their fronts in
+// queues and visits no crossing. Checked against the closed-form solution of a rigid bar
+// ringing between bonded walls (J+ = φ + Ψ carried at +c and J− = φ − Ψ at −c in the lab,
+// reflected at each wall where φ = 0, Ψ = −ln s), and for the cost that promises.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "error_bound.hpp"
+#include "rigidity/scene_loader.hpp"
+#include "rigidity/solvers/solve.hpp"
+
+namespace rigidity {
+namespace {
+
+struct Segment0 {
+  double length, velocity, stretch;
+};
+
+/// A rigid bar of segments between bonded walls at 0 and its lab length.
+std::vector<Segment0> ringing_segments(int count) {
+  std::vector<Segment0> out;
+  for (int k = 0; k < count; ++k)
+    out.push_back({1.0 / count, 0.05 * std::sin(1.7 * k + 0.3), 1.0 + 0.04 * std::cos(2.3 * k)});
+  return out;
+}
+
+std::string ringing_scene(const std::vector<Segment0>& segments, double t_end, double tolerance, int samples) {
+  std::ostringstream y;
+  y.precision(17);
+  y << "name: ringing\nmaterials: {steel: {model: rigid, rest_density: 1.5}}\n"
+    << "bodies:\n  - name: bar\n    material: steel\n    position: 0\n    segments:\n";
+  for (const Segment0& s : segments)
+    y << "      - {length: " << s.length << ", velocity: " << s.velocity << ", stretch: " << s.stretch << "}\n";
+  double lab = 0.0;
+  for (const Segment0& s : segments) lab += s.length * s.stretch * std::sqrt(1.0 - s.velocity * s.velocity);
+  y << "boundaries:\n  left: {type: wall, bonded: true, position: 0}\n"
+    << "  right: {type: wall, bonded: true, position: " << lab << "}\n"
+    << "solver: {method: characteristics, tolerance: " << tolerance << "}\n"
+    << "time: {end: " << t_end << "}\n"
+    << "outputs: {snapshots: [{times: [" << t_end << "], quantities: [x, v, s], samples: " << samples << "}]}\n";
+  return y.str();
+}
+
+/// The closed form: the bar's ends stay at 0 and ℓ (bonded to fixed walls, φ = 0 there), so
+/// J+(x, t) is J+ at t = 0 at the foot of its characteristic, folded back at the walls
+/// (J+ arriving at ℓ leaves as J− = −J+, and J− arriving at 0 as J+ = −J−).
+class RingingExact {
+ public:
+  explicit RingingExact(const std::vector<Segment0>& segments) {
+    double x = 0.0;
+    for (const Segment0& s : segments) {
+      const double phi = std::atanh(s.velocity), psi = -std::log(s.stretch);
+      edges_.push_back(x);
+      j_plus_.push_back(phi + psi);
+      j_minus_.push_back(phi - psi);
+      x += s.length * s.stretch * std::sqrt(1.0 - s.velocity * s.velocity);
+    }
+    length_ = x;
+  }
+  [[nodiscard]] double length() const { return length_; }
+  /// (φ, ln s) at lab point x, time t; `near_front`: within `margin` of a front's path.
+  void state(double x, double t, double margin, double& phi, double& log_s, bool& near_front) const {
+    near_front = false;
+    const double jp = invariant(x - t, +1, margin, near_front);
+    const double jm = invariant(x + t, -1, margin, near_front);
+    phi = 0.5 * (jp + jm);
+    log_s = -0.5 * (jp - jm);
+  }
+
+ private:
+  /// J of family f carried along x = foot + f t, unfolded: the path through the walls is a
+  /// straight line in the bar's images of period 2ℓ, J changing sign at each reflection.
+  double invariant(double foot, int family, double margin, bool& near_front) const {
+    const double period = 2.0 * length_;
+    double y = std::fmod(foot, period);
+    if (y < 0.0) y += period;
+    // y in [0, ℓ): a point of the bar carrying this family's J; y in [ℓ, 2ℓ): the mirror
+    // point 2ℓ − y carrying the other family's J, with the sign flipped.
+    const bool mirrored = y >= length_;
+    const double z = mirrored ? period - y : y;
+    for (double edge : edges_)
+      if (std::abs(z - edge) < margin) near_front = true;
+    if (std::abs(z - length_) < margin || z < margin) near_front = true;
+    const std::size_t k =
+        static_cast<std::size_t>(std::upper_bound(edges_.begin(), edges_.end(), z) - edges_.begin()) - 1;
+    const bool plus = (family > 0) != mirrored;
+    const double j = plus ? j_plus_[k] : j_minus_[k];
+    return mirrored ? -j : j;
+  }
+  std::vector<double> edges_, j_plus_, j_minus_;
+  double length_ = 0.0;
+};
+
+TEST(LightPieces, ARigidBarRingingBetweenWallsIsTheClosedFormToRoundOff) {
+  const std::vector<Segment0> segments = ringing_segments(12);
+  const double t_end = 3.7;
+  const Scene scene = load_scene_string(ringing_scene(segments, t_end, 1e-14, 3001), "<test>");
+  const RunResult r = solve(scene);
+  ASSERT_EQ(r.status, "ok");
+  EXPECT_EQ(solver_number(r, "fronts_merged"), 0.0);
+  const RingingExact exact(segments);
+  std::map<double, double> x_of, v_of, s_of;
+  for (const SnapshotSample& s : r.snapshots) {
+    if (s.quantity == Quantity::x) x_of[s.X] = s.value;
+    if (s.quantity == Quantity::v) v_of[s.X] = s.value;
+    if (s.quantity == Quantity::s) s_of[s.X] = s.value;
+  }
+  ASSERT_EQ(x_of.size(), 3001u);
+  int compared = 0;
+  double previous_x = -1.0;
+  for (const auto& [X, x] : x_of) {
+    EXPECT_GT(x, previous_x) << "lab positions rise with the label";
+    previous_x = x;
+    double phi = 0.0, log_s = 0.0;
+    bool near_front = false;
+    exact.state(x, t_end, 1e-9, phi, log_s, near_front);
+    if (near_front) continue;
+    ++compared;
+    EXPECT_NEAR(std::atanh(v_of[X]), phi, 1e-12) << "X = " << X << ", x = " << x;
+    EXPECT_NEAR(std::log(s_of[X]), log_s, 1e-12) << "X = " << X << ", x = " << x;
+  }
+  EXPECT_GT(compared, 2900);
+  // The ends stay on the walls and the labels fill the bar.
+  EXPECT_NEAR(x_of.begin()->second, 0.0, 1e-13);
+  EXPECT_NEAR(x_of.rbegin()->second, exact.length(), 1e-12);
+  // Energy and momentum books close to round-off.
+  const Conservation& c = r.conservation;
+  EXPECT_NEAR(c.energy_final - c.wall_work, c.energy_initial, 1e-12);
+}
+
+TEST(LightPieces, CostFrontsPerCrossingTimeNotTheirSquare) {
+  // Each of the 2 × 199 fronts of 200 segments runs to an end about once per crossing time;
+  // a tracker visiting crossings would also make ~100² crossings per crossing time.
+  const std::vector<Segment0> segments = ringing_segments(200);
+  const RunResult r = solve(load_scene_string(ringing_scene(segments, 4.0, 1e-14, 11), "<test>"));
+  ASSERT_EQ(r.status, "ok");
+  EXPECT_LT(r.stats.interactions, 6 * 400 * 4);
+  EXPECT_GT(r.stats.interactions, 400 * 3);
+}
+
+}  // namespace
+}  // namespace rigidity
