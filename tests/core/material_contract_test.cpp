@@ -424,6 +424,14 @@ TEST_P(MaterialContract, LinearDegeneracyMatchesTheWaveSpeeds) {
   }
 }
 
+TEST_P(MaterialContract, SoundAtLightSpeedIsDeclaredOnlyWhereItHolds) {
+  // The front tracker lets the fronts of such a material pass each other unvisited: a
+  // material that claims it must have c_s = c at every stretch, and be linearly degenerate.
+  if (!material().sound_at_light_speed()) return;
+  EXPECT_TRUE(material().linearly_degenerate());
+  for (Stretch s : grid_) EXPECT_EQ(material().sound_speed(s), 1.0) << "ln s = " << s.log();
+}
+
 std::string case_label(const ::testing::TestParamInfo<MaterialCase>& param_info) { return param_info.param.label; }
 
 INSTANTIATE_TEST_SUITE_P(Registry, MaterialContract, ::testing::ValuesIn(registry_cases()), case_label);
