@@ -35,6 +35,8 @@ namespace rigidity {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+/// e^−½ − 1: the strain below which s(Ψ) is taken from its form for small s.
+constexpr double kStrainAtHalf = -0.39346934028736658;
 
 class Hooke final : public Material {
  public:
@@ -123,6 +125,14 @@ class Hooke final : public Material {
   [[nodiscard]] Solved<Stretch> stretch_at_psi(double psi) const override {
     if (!(psi < psi_max() && psi > psi_min())) return Solved<Stretch>::failure(Status::out_of_range);
     double log_s = 0.0;
+    if (std::abs(psi) < 1.0) {
+      // Near s = 1 (s > e^−½, as below): s − 1 = (cosh Ψ − 1) − sinh(Ψ)/b = 2h² − 2h sqrt(1 + h²)/b
+      // with h = sinh(Ψ/2), free of cancellation there (its two terms could cancel only for
+      // h > 1/b ≥ 1): one sinh and one log1p.
+      const double h = std::sinh(0.5 * psi);
+      const double strain = 2.0 * h * h - 2.0 * h * std::sqrt(1.0 + h * h) / b_;
+      if (strain > kStrainAtHalf) return {Stretch::from_log(std::log1p(strain))};
+    }
     if (psi <= -1.0) {
       // s = e^{−Ψ} [(1 + e^{2Ψ})/2 + (1 − e^{2Ψ})/(2b)]: both terms positive, no overflow.
       const double e2 = std::exp(2.0 * psi);
