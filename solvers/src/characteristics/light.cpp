@@ -11,6 +11,8 @@
 
 namespace rigidity::characteristics {
 
+/// Fronts a lone body needs at the start to be worth a light piece.
+constexpr int kLightMinFronts = 8;
 /// How many fronts of the other family a merge of two light fronts may reach across.
 constexpr std::size_t kLightMergeReach = 16;
 
@@ -33,9 +35,13 @@ void Tracker::make_light(double t) {
     const Material* m = nodes_[pc.left_end].right.material;
     if (m == nullptr || !m->sound_at_light_speed() || m->cavitation_pressure() > -kInf) continue;
     bool one_material = true;
-    for (int n = nodes_[pc.left_end].next; n != pc.right_end; n = nodes_[n].next)
+    int fronts_in = 0;
+    for (int n = nodes_[pc.left_end].next; n != pc.right_end; n = nodes_[n].next, ++fronts_in)
       one_material = one_material && nodes_[n].kind == NodeKind::front && nodes_[n].right.material == m;
     if (!one_material) continue;
+    // A lone body with few fronts keeps them: they never multiply (walls and free ends
+    // reflect a front as one front), and the queues would only cost it time.
+    if (scene_.bodies.size() == 1 && fronts_in < kLightMinFronts) continue;
     LightPiece& lp = light_[piece];
     light_bodies_ += 1.0;
     // C+ fronts nearest the right end first: the list read from the right.
