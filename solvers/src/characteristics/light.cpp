@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <vector>
 
 #include "rigidity/errors.hpp"
@@ -157,24 +156,15 @@ void Tracker::absorb_light(int piece, double t) {
   }
   for (const int id : plus) {
     const Node& f = nodes_[id];
-    if (f.family < 0) {
-      for (int k = pc.left_end; k != kNone; k = nodes_[k].next)
-        fprintf(stderr, "node %d kind %d family %d X %.6g x %.6g\n", k, (int)nodes_[k].kind, nodes_[k].family,
-                nodes_[k].X_at(t), nodes_[k].x_at(t));
-      fprintf(stderr, "piece %d t %.6g store %d\n", piece, t, lp.store);
-      throw NumericalError("a light piece's left end emitted a C− front");
-    }
+    if (f.family < 0) throw NumericalError("a light piece's left end emitted a C− front");
     const double x = f.x_at(t);
     lp.plus.push_back(
         LightFront{x - t, invariant(m, f.right.state, +1), invariant(m, nodes_[f.prev].right.state, +1), t, x});
   }
   if (!minus.empty()) nodes_[lp.store].right = nodes_[minus.back()].right;  // next to the right end
-  for (auto it = minus.rbegin(); it != minus.rend(); ++it) {
-    const Node& f = nodes_[*it];
-    if (f.family > 0) throw NumericalError("a light piece's right end emitted a C+ front");
-  }
   for (const int id : minus) {
     const Node& f = nodes_[id];
+    if (f.family > 0) throw NumericalError("a light piece's right end emitted a C+ front");
     const double x = f.x_at(t);
     lp.minus.push_back(
         LightFront{x + t, invariant(m, nodes_[f.prev].right.state, -1), invariant(m, f.right.state, -1), t, x});

@@ -87,16 +87,21 @@ class MeetingQueue {
     }
     place(i, e);
   }
+  /// The earliest child of slot i, or the heap's size if it has none.
+  [[nodiscard]] std::size_t earliest_child(std::size_t i) const {
+    const std::size_t n = heap_.size();
+    const std::size_t first = kArity * i + 1;
+    if (first >= n) return n;
+    std::size_t best = first;
+    const std::size_t end = first + kArity < n ? first + kArity : n;
+    for (std::size_t c = first + 1; c < end; ++c) best = earlier(heap_[c], heap_[best]) ? c : best;
+    return best;
+  }
   /// Puts e at slot i or below it, moving earlier children up.
   void sift_down(std::size_t i, const Entry& e) {
-    const std::size_t n = heap_.size();
     for (;;) {
-      const std::size_t first = kArity * i + 1;
-      if (first >= n) break;
-      std::size_t best = first;
-      const std::size_t end = first + kArity < n ? first + kArity : n;
-      for (std::size_t c = first + 1; c < end; ++c) best = earlier(heap_[c], heap_[best]) ? c : best;
-      if (!earlier(heap_[best], e)) break;
+      const std::size_t best = earliest_child(i);
+      if (best == heap_.size() || !earlier(heap_[best], e)) break;
       place(i, heap_[best]);
       i = best;
     }
@@ -108,14 +113,10 @@ class MeetingQueue {
   /// down to a leaf along the earliest children and the entry rises from there (Floyd),
   /// usually not at all.
   void pop_root(const Entry& last) {
-    const std::size_t n = heap_.size();
     std::size_t i = 0;
     for (;;) {
-      const std::size_t first = kArity * i + 1;
-      if (first >= n) break;
-      std::size_t best = first;
-      const std::size_t end = first + kArity < n ? first + kArity : n;
-      for (std::size_t c = first + 1; c < end; ++c) best = earlier(heap_[c], heap_[best]) ? c : best;
+      const std::size_t best = earliest_child(i);
+      if (best == heap_.size()) break;
       place(i, heap_[best]);
       i = best;
     }

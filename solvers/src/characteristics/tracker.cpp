@@ -256,32 +256,26 @@ RunResult Tracker::run() {
       r.x_left = nodes_[piece.left_end].x_at(t_end);
       r.x_right = nodes_[piece.right_end].x_at(t_end);
       double mass = 0.0, mass_velocity = 0.0;
-      if (is_light(parts[k])) {
-        const Material& m = *nodes_[piece.left_end].right.material;
-        walk_light(parts[k], t_end, [&](double, double, double X_a, double X_b, const State& state, bool) {
-          const double dX = X_b - X_a;
-          mass += m.rest_density() * dX;
-          mass_velocity += m.rest_density() * dX * std::tanh(state.rapidity);
-          r.energy += dX * energy_density(m, state);
-          r.momentum += dX * momentum_density(m, state);
-          const EnergyParts split = energy_parts(m, state);
-          r.kinetic_energy += dX * split.kinetic;
-          r.internal_energy += dX * split.internal;
-          r.rest_energy += dX * split.rest;
-        });
-      }
-      for (int n = piece.left_end; !is_light(parts[k]) && nodes_[n].kind != NodeKind::right_end; n = nodes_[n].next) {
-        const Node& node = nodes_[n];
-        const double dX = nodes_[node.next].X_at(t_end) - node.X_at(t_end);
-        const Material& m = *node.right.material;
+      // One region of natural length dX in state `state`.
+      const auto add = [&](double dX, const Material& m, const State& state) {
         mass += m.rest_density() * dX;
-        mass_velocity += m.rest_density() * dX * std::tanh(node.right.state.rapidity);
-        r.energy += dX * energy_density(m, node.right.state);
-        r.momentum += dX * momentum_density(m, node.right.state);
-        const EnergyParts split = energy_parts(m, node.right.state);
+        mass_velocity += m.rest_density() * dX * std::tanh(state.rapidity);
+        r.energy += dX * energy_density(m, state);
+        r.momentum += dX * momentum_density(m, state);
+        const EnergyParts split = energy_parts(m, state);
         r.kinetic_energy += dX * split.kinetic;
         r.internal_energy += dX * split.internal;
         r.rest_energy += dX * split.rest;
+      };
+      if (is_light(parts[k])) {
+        const Material& m = *nodes_[piece.left_end].right.material;
+        walk_light(parts[k], t_end,
+                   [&](double, double, double X_a, double X_b, const State& state, bool) { add(X_b - X_a, m, state); });
+      } else {
+        for (int n = piece.left_end; nodes_[n].kind != NodeKind::right_end; n = nodes_[n].next) {
+          const Node& node = nodes_[n];
+          add(nodes_[node.next].X_at(t_end) - node.X_at(t_end), *node.right.material, node.right.state);
+        }
       }
       r.velocity_mean = mass > 0.0 ? mass_velocity / mass : 0.0;
       result_.bodies.push_back(r);
