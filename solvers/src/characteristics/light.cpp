@@ -161,7 +161,6 @@ void Tracker::absorb_light(int piece, double t) {
     lp.plus.push_back(
         LightFront{x - t, invariant(m, f.right.state, +1), invariant(m, nodes_[f.prev].right.state, +1), t, x});
   }
-  if (!minus.empty()) nodes_[lp.store].right = nodes_[minus.back()].right;  // next to the right end
   for (const int id : minus) {
     const Node& f = nodes_[id];
     if (f.family > 0) throw NumericalError("a light piece's right end emitted a C+ front");
@@ -169,6 +168,9 @@ void Tracker::absorb_light(int piece, double t) {
     lp.minus.push_back(
         LightFront{x + t, invariant(m, nodes_[f.prev].right.state, -1), invariant(m, f.right.state, -1), t, x});
   }
+  // The store holds the state next to the right end only once the C− fronts have read the
+  // state ahead of the first of them from it.
+  if (!minus.empty()) nodes_[lp.store].right = nodes_[minus.back()].right;
   for (const int id : plus) kill_node(id, t);
   for (const int id : minus) kill_node(id, t);
   link(pc.left_end, lp.store);
