@@ -180,6 +180,7 @@ class Scheme {
 
   // cells, left to right in lab order, body after body
   std::vector<const Material*> material_;
+  std::vector<finite_volume::RecoveryBounds> bounds_;  ///< of each cell's material, for the recovery of (φ, s)
   std::vector<int> body_of_;
   std::vector<double> width_;       ///< ΔX
   std::vector<double> label_left_;  ///< X of the left face, in its body's labels
@@ -250,8 +251,10 @@ void Scheme::build_cells() {
       // Ψ at the pressure of a free end (p = 0, or the cavitation pressure if higher).
       const Solved<Stretch> free_stretch = m.stretch_at_pressure(std::max(0.0, m.cavitation_pressure()));
       const double dX = seg.length / counts[k];
+      const finite_volume::RecoveryBounds bounds = finite_volume::recovery_bounds(m);
       for (int i = 0; i < counts[k]; ++i) {
         material_.push_back(&m);
+        bounds_.push_back(bounds);
         body_of_.push_back(static_cast<int>(b));
         width_.push_back(dX);
         label_left_.push_back(X + i * dX);
@@ -554,7 +557,8 @@ void Scheme::recover(double t) {
   std::vector<bool> clamped(bodies_.size(), false);
   std::vector<int> first_clamped(bodies_.size(), -1);
   for (std::size_t i = 0; i < state_.size(); ++i) {
-    const finite_volume::Recovered r = finite_volume::recover_state(*material_[i], u_[i], state_[i].rapidity);
+    const finite_volume::Recovered r =
+        finite_volume::recover_state(*material_[i], bounds_[i], u_[i], state_[i].rapidity);
     const int c = static_cast<int>(i);
     if (!r.ok()) {
       std::ostringstream os;

@@ -35,7 +35,8 @@ double acosh_of_exp(double d) {
 /// The momentum per unit label G(φ) = (e+p) s sinh φ along s = L cosh φ, and dG/dφ.
 struct MomentumCurve {
   const Material* material;
-  double log_labels;  ///< ln L, L = s/γ
+  double labels;      ///< L = s/γ
+  double log_labels;  ///< ln L
 
   [[nodiscard]] Stretch stretch(double phi) const { return Stretch::from_log(log_labels + log_cosh(phi)); }
 
@@ -47,14 +48,27 @@ struct MomentumCurve {
 
   [[nodiscard]] double value(double phi) const { return enthalpy_per_label(phi) * std::sinh(phi); }
 
-  /// G and G' = (e+p) s (1 + (1 − c_s²) sinh² φ)/cosh φ.
+  /// G and G' = (e+p) s (1 + (1 − c_s²) sinh² φ)/cosh φ at φ ≥ 0, from one exponential
+  /// of φ (this is the inner loop of every finite-volume step): cosh, sinh and ln cosh
+  /// from e^φ (sinh from expm1 below 1, exact near 0), and s = L cosh φ.
   void evaluate(double phi, double& g, double& dg) const {
-    const Stretch s = stretch(phi);
-    const double h = material->enthalpy_density(s) * s.value();
+    double sh = 0.0, ch = 0.0, em = 0.0;
+    if (phi < 1.0) {
+      const double u = std::expm1(phi);
+      sh = 0.5 * u * (u + 2.0) / (1.0 + u);
+      ch = 1.0 + 0.5 * u * u / (1.0 + u);
+      em = 1.0 / (1.0 + u);
+    } else {
+      const double ep = std::exp(phi);
+      em = 1.0 / ep;
+      sh = 0.5 * (ep - em);
+      ch = 0.5 * (ep + em);
+    }
+    const Stretch s = Stretch::from_log(log_labels + phi + std::log1p(em * em) - std::log(2.0));
+    const double h = material->enthalpy_density(s) * labels * ch;
     const double c = material->sound_speed(s);
-    const double sh = std::sinh(phi);
     g = h * sh;
-    dg = h * (1.0 + (1.0 - c) * (1.0 + c) * sh * sh) / std::cosh(phi);
+    dg = h * (1.0 + (1.0 - c) * (1.0 + c) * sh * sh) / ch;
   }
 };
 
@@ -72,23 +86,32 @@ Conserved conserved(const Material& m, const State& st) {
 
 Flux flux(const Material& m, const State& st) { return Flux{-std::tanh(st.rapidity), m.pressure(st.stretch)}; }
 
+RecoveryBounds recovery_bounds(const Material& m) {
+  RecoveryBounds b;
+  const StretchRange range = m.admissible();
+  b.log_min = range.log_min;
+  b.log_cap = range.log_max;
+  b.parts = m.cavitation_pressure() > -kInf;
+  if (b.parts) {
+    const Solved<Stretch> parting = m.stretch_at_pressure(m.cavitation_pressure());
+    if (parting.ok()) b.log_cap = std::min(b.log_cap, parting.value.log());
+  }
+  return b;
+}
+
 Recovered recover_state(const Material& m, const Conserved& u, double rapidity_guess) {
+  return recover_state(m, recovery_bounds(m), u, rapidity_guess);
+}
+
+Recovered recover_state(const Material& m, const RecoveryBounds& bounds, const Conserved& u, double rapidity_guess) {
   const double labels = u[0], momentum = u[1];
   if (!(labels > 0.0) || !std::isfinite(labels) || !std::isfinite(momentum)) return failed(Status::out_of_range);
   const double log_labels = std::log(labels);
   const double target = std::abs(momentum);
   const double sign = momentum < 0.0 ? -1.0 : 1.0;
-  const MomentumCurve curve{&m, log_labels};
-
-  // Stretches the state may take: the admissible range, cut at the parting stretch
-  // of a material that cavitates.
-  const StretchRange range = m.admissible();
-  double log_cap = range.log_max;
-  const bool parts = m.cavitation_pressure() > -kInf;
-  if (parts) {
-    const Solved<Stretch> parting = m.stretch_at_pressure(m.cavitation_pressure());
-    if (parting.ok()) log_cap = std::min(log_cap, parting.value.log());
-  }
+  const MomentumCurve curve{&m, labels, log_labels};
+  const double log_cap = bounds.log_cap;
+  const bool parts = bounds.parts;
   const auto clamped = [&]() {
     // At the parting stretch, with the momentum kept: (e+p) s sinh φ = U₁.
     Recovered r;
@@ -102,7 +125,7 @@ Recovered recover_state(const Material& m, const Conserved& u, double rapidity_g
 
   // The bracket in |φ|: s = L cosh φ between the bounds of the range.
   double lo = 0.0, hi = kMaxRapidity;
-  if (std::isfinite(range.log_min) && log_labels < range.log_min) lo = acosh_of_exp(range.log_min - log_labels);
+  if (std::isfinite(bounds.log_min) && log_labels < bounds.log_min) lo = acosh_of_exp(bounds.log_min - log_labels);
   if (std::isfinite(log_cap)) {
     if (log_labels > log_cap) {
       if (parts) return clamped();
@@ -129,7 +152,7 @@ Recovered recover_state(const Material& m, const Conserved& u, double rapidity_g
   // φ outwards (G may underflow far beyond the root, so the cap is a poor first try).
   bool hi_known = false;  // G(hi) ≥ |U₁| established
   double phi = std::abs(rapidity_guess);
-  if (!(phi > lo && phi < hi)) {
+  if (!(phi > lo && phi <= hi)) {  // a guess at the cap (a cell clamped there) settles in one evaluation
     phi = std::min(lo + target / curve.enthalpy_per_label(lo), 0.5 * (lo + hi));  // G ≈ h φ for small φ
     if (!(phi > lo)) phi = 0.5 * (lo + hi);
   }

@@ -48,6 +48,7 @@
 /// The recovery of (φ, s) from U loses about γ² ε of relative precision.
 
 #include <Eigen/Core>
+#include <limits>
 
 #include "rigidity/material.hpp"
 #include "rigidity/run_recorder.hpp"
@@ -99,6 +100,20 @@ struct Recovered {
 ///       failed status: out_of_range if no admissible state has these U
 ///       (never a guess).
 [[nodiscard]] Recovered recover_state(const Material& material, const Conserved& u, double rapidity_guess = 0.0);
+
+/// What the recovery needs of a material besides its laws: the stretches a state may
+/// take (the admissible range, cut at the parting stretch of a material that cavitates).
+/// The same for every cell of a material: a scheme computes it once per cell.
+struct RecoveryBounds {
+  double log_min = -std::numeric_limits<double>::infinity();
+  double log_cap = std::numeric_limits<double>::infinity();
+  bool parts = false;  ///< the material cavitates at log_cap
+};
+[[nodiscard]] RecoveryBounds recovery_bounds(const Material& material);
+
+/// recover_state with the material's bounds computed beforehand.
+[[nodiscard]] Recovered recover_state(const Material& material, const RecoveryBounds& bounds, const Conserved& u,
+                                      double rapidity_guess);
 
 /// What goes through a face. The momentum flux p is common; the label flux is −v
 /// with v the velocity of the face seen from each side, which differ only where the
