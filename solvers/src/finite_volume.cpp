@@ -308,8 +308,9 @@ void Scheme::build_walls() {
 double Scheme::stable_step() {
   double dt = kInf;
   for (std::size_t c = 0; c < state_.size(); ++c) {
-    speed_minus_[c] = characteristic_speed(*material_[c], state_[c], -1);
-    speed_plus_[c] = characteristic_speed(*material_[c], state_[c], +1);
+    const finite_volume::LagrangianSpeeds speeds = finite_volume::lagrangian_speeds(*material_[c], state_[c]);
+    speed_minus_[c] = speeds.minus;
+    speed_plus_[c] = speeds.plus;
     const double fastest = std::max(-speed_minus_[c], speed_plus_[c]);
     dt = std::min(dt, width_[c] / fastest);
   }

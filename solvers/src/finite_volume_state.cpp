@@ -195,18 +195,25 @@ struct FaceState {
   Flux f;
 };
 
+/// dX/dt of C∓ and C+ at stretch s, sound speed c and e^±φ: cosh φ ± c sinh φ =
+/// ((1 ± c) e^φ + (1 ∓ c) e^−φ)/2, free of cancellation for c → 1 and large |φ|
+/// (as characteristic_speeds).
+LagrangianSpeeds speeds_at(double s, double c, double ep, double em) {
+  return LagrangianSpeeds{-c / (s * 0.5 * ((1.0 - c) * ep + (1.0 + c) * em)),
+                          c / (s * 0.5 * ((1.0 + c) * ep + (1.0 - c) * em))};
+}
+
 FaceState face_state(const Material& m, const State& st) {
   const double s = st.stretch.value();
-  const double c = m.sound_speed(st.stretch);
   const double ep = std::exp(st.rapidity), em = 1.0 / ep;
-  // cosh φ ± c sinh φ = ((1 ± c) e^φ + (1 ∓ c) e^−φ)/2: no cancellation for c → 1 and
-  // large |φ| (as characteristic_speeds); sinh φ from expm1, exact near 0.
+  // sinh φ from expm1, exact near 0.
   const double cosh = 0.5 * (ep + em);
   const double u = std::expm1(st.rapidity);
   const double sinh = std::abs(st.rapidity) < 1.0 ? 0.5 * u * (u + 2.0) / (1.0 + u) : 0.5 * (ep - em);
+  const LagrangianSpeeds speeds = speeds_at(s, m.sound_speed(st.stretch), ep, em);
   FaceState out;
-  out.fastest = c / (s * 0.5 * ((1.0 + c) * ep + (1.0 - c) * em));
-  out.slowest = -c / (s * 0.5 * ((1.0 - c) * ep + (1.0 + c) * em));
+  out.fastest = speeds.plus;
+  out.slowest = speeds.minus;
   out.u = Conserved{s / cosh, m.enthalpy_density(st.stretch) * s * sinh};
   out.f = Flux{-std::tanh(st.rapidity), m.pressure(st.stretch)};
   return out;
@@ -224,6 +231,11 @@ FaceFlux hll_flux(const Material& mL, const State& left, const Material& mR, con
   out.velocity_left = out.velocity_right = -f[0];
   out.pressure = f[1];
   return out;
+}
+
+LagrangianSpeeds lagrangian_speeds(const Material& m, const State& st) {
+  const double ep = std::exp(st.rapidity);
+  return speeds_at(st.stretch.value(), m.sound_speed(st.stretch), ep, 1.0 / ep);
 }
 
 double mc_limited_slope(double a, double b) {

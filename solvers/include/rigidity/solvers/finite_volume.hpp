@@ -125,6 +125,13 @@ struct FaceFlux {
   bool parted = false;          ///< the Riemann problem parted the face
 };
 
+/// The Lagrangian characteristic speeds dX/dt of C− and C+ in a state, from one
+/// sound speed and one exponential (as characteristic_speeds, both families at once).
+struct LagrangianSpeeds {
+  double minus = 0.0, plus = 0.0;
+};
+[[nodiscard]] LagrangianSpeeds lagrangian_speeds(const Material& material, const State& state);
+
 /// HLL flux between two states (either material), Lagrangian wave speeds from
 /// characteristic_speed on both sides.
 [[nodiscard]] FaceFlux hll_flux(const Material& left_material, const State& left, const Material& right_material,
