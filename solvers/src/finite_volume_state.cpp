@@ -18,10 +18,33 @@ constexpr int kMaxIterations = 200;
 /// A Newton step of the recovery this small (relative, see recover_state) ends it.
 constexpr double kNewtonSettled = 1e-8;
 
-/// ln cosh φ, without overflow and exact for small φ.
+/// ln cosh φ from |φ| and e^−|φ|, without overflow and exact for small φ.
+double log_cosh(double a, double e_minus_a) { return a + std::log1p(e_minus_a * e_minus_a) - std::log(2.0); }
 double log_cosh(double phi) {
   const double a = std::abs(phi);
-  return a + std::log1p(std::exp(-2.0 * a)) - std::log(2.0);
+  return log_cosh(a, std::exp(-a));
+}
+
+/// sinh φ, cosh φ and e^±φ from one exponential: below |φ| = 1 from expm1, so that
+/// sinh φ is exact near 0.
+struct Hyperbolic {
+  double sinh = 0.0, cosh = 1.0, ep = 1.0, em = 1.0;  ///< ep = e^φ, em = e^−φ
+};
+Hyperbolic hyperbolic(double phi) {
+  Hyperbolic h;
+  if (std::abs(phi) < 1.0) {
+    const double u = std::expm1(phi);
+    h.ep = 1.0 + u;
+    h.em = 1.0 / h.ep;
+    h.sinh = 0.5 * u * (u + 2.0) / (1.0 + u);
+    h.cosh = 1.0 + 0.5 * u * u / (1.0 + u);
+  } else {
+    h.ep = std::exp(phi);
+    h.em = 1.0 / h.ep;
+    h.sinh = 0.5 * (h.ep - h.em);
+    h.cosh = 0.5 * (h.ep + h.em);
+  }
+  return h;
 }
 
 /// acosh(e^d) for d ≥ 0: the rapidity at which cosh φ = e^d.
@@ -50,21 +73,11 @@ struct MomentumCurve {
 
   /// G and G' = (e+p) s (1 + (1 − c_s²) sinh² φ)/cosh φ at φ ≥ 0, from one exponential
   /// of φ (this is the inner loop of every finite-volume step): cosh, sinh and ln cosh
-  /// from e^φ (sinh from expm1 below 1, exact near 0), and s = L cosh φ.
+  /// from it, and s = L cosh φ.
   void evaluate(double phi, double& g, double& dg) const {
-    double sh = 0.0, ch = 0.0, em = 0.0;
-    if (phi < 1.0) {
-      const double u = std::expm1(phi);
-      sh = 0.5 * u * (u + 2.0) / (1.0 + u);
-      ch = 1.0 + 0.5 * u * u / (1.0 + u);
-      em = 1.0 / (1.0 + u);
-    } else {
-      const double ep = std::exp(phi);
-      em = 1.0 / ep;
-      sh = 0.5 * (ep - em);
-      ch = 0.5 * (ep + em);
-    }
-    const Stretch s = Stretch::from_log(log_labels + phi + std::log1p(em * em) - std::log(2.0));
+    const Hyperbolic hy = hyperbolic(phi);
+    const double sh = hy.sinh, ch = hy.cosh;
+    const Stretch s = Stretch::from_log(log_labels + log_cosh(phi, hy.em));
     const double h = material->enthalpy_density(s) * labels * ch;
     const double c = material->sound_speed(s);
     g = h * sh;
@@ -205,16 +218,12 @@ LagrangianSpeeds speeds_at(double s, double c, double ep, double em) {
 
 FaceState face_state(const Material& m, const State& st) {
   const double s = st.stretch.value();
-  const double ep = std::exp(st.rapidity), em = 1.0 / ep;
-  // sinh φ from expm1, exact near 0.
-  const double cosh = 0.5 * (ep + em);
-  const double u = std::expm1(st.rapidity);
-  const double sinh = std::abs(st.rapidity) < 1.0 ? 0.5 * u * (u + 2.0) / (1.0 + u) : 0.5 * (ep - em);
-  const LagrangianSpeeds speeds = speeds_at(s, m.sound_speed(st.stretch), ep, em);
+  const Hyperbolic hy = hyperbolic(st.rapidity);
+  const LagrangianSpeeds speeds = speeds_at(s, m.sound_speed(st.stretch), hy.ep, hy.em);
   FaceState out;
   out.fastest = speeds.plus;
   out.slowest = speeds.minus;
-  out.u = Conserved{s / cosh, m.enthalpy_density(st.stretch) * s * sinh};
+  out.u = Conserved{s / hy.cosh, m.enthalpy_density(st.stretch) * s * hy.sinh};
   out.f = Flux{-std::tanh(st.rapidity), m.pressure(st.stretch)};
   return out;
 }

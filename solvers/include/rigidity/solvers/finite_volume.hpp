@@ -103,7 +103,7 @@ struct Recovered {
 
 /// What the recovery needs of a material besides its laws: the stretches a state may
 /// take (the admissible range, cut at the parting stretch of a material that cavitates).
-/// The same for every cell of a material: a scheme computes it once per cell.
+/// The same for every cell of a material: a scheme computes it once per segment of a body.
 struct RecoveryBounds {
   double log_min = -std::numeric_limits<double>::infinity();
   double log_cap = std::numeric_limits<double>::infinity();
