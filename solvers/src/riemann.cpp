@@ -779,7 +779,10 @@ bool wave_is_shock(const Material& m, const State& outer, Stretch star, int fami
 }
 
 FrontSpeeds characteristic_speeds(const Material& m, const State& state, int family) {
-  const double c = m.sound_speed(state.stretch);
+  return characteristic_speeds(m.sound_speed(state.stretch), state, family);
+}
+
+FrontSpeeds characteristic_speeds(double c, const State& state, int family) {
   if (c == 1.0) {
     // Signals at light speed: dX/dt = ± e^∓φ / s, dx/dt = ±1 exactly.
     return FrontSpeeds{family * std::exp(-family * state.rapidity - state.stretch.log()), static_cast<double>(family)};

@@ -146,8 +146,9 @@ bool Tracker::merge_across(int p, int q, double t) {
   const auto invariant = [&](const State& st, int family) { return st.rapidity + family * memo_->psi(m, st.stretch); };
   const State before = nodes_[left_of_p].right.state;
   const State after_q = nodes_[q].right.state;
-  const double j_before = invariant(before, f), j_after_p = invariant(nodes_[p].right.state, f);
-  const double j_after_q = invariant(after_q, f);
+  const auto region_invariant = [&](const Region& r) { return r.state.rapidity + f * psi_of(r); };
+  const double j_before = region_invariant(nodes_[left_of_p].right), j_after_p = region_invariant(nodes_[p].right);
+  const double j_after_q = region_invariant(nodes_[q].right);
   const double Xp = nodes_[p].X_at(t), Xq = nodes_[q].X_at(t);
   const double sigma_p = j_after_p - j_before, sigma_q = j_after_q - j_after_p;
   const double weaker = std::min(std::abs(sigma_p), std::abs(sigma_q));

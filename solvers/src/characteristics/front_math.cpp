@@ -51,9 +51,15 @@ FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b,
 }
 
 Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch star, int family) {
+  JumpLaws at_outer, at_star;
+  return hugoniot_rapidity(outer, at_outer.at(m, outer.stretch), star, at_star.at(m, star), family);
+}
+
+Solved<double> hugoniot_rapidity(const State& outer, const JumpLaws& at_outer, Stretch star, const JumpLaws& at_star,
+                                 int family) {
   const double s0 = outer.stretch.value(), s = star.value();
-  const double dp = m.pressure(star) - m.pressure(outer.stretch);
-  const double w = m.enthalpy_density(star);
+  const double dp = at_star.pressure - at_outer.pressure;
+  const double w = at_star.enthalpy;
   const double qa = s * s * w * w;
   const double qb = 2.0 * s * s * w - dp * s0 * s0;
   const double qc = s0 * s0 * std::expm1(2.0 * (star.log() - outer.stretch.log()));
@@ -72,9 +78,9 @@ Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch 
 
   // The lab frame: g(φ) = [p][τ] + [v][M] = 0 with τ = s/cosh φ, v = tanh φ, M = w s sinh φ.
   const double phi0 = outer.rapidity;
-  const Hyperbolic at_outer = hyperbolic(phi0);
-  const double ch0 = at_outer.cosh;
-  const double tau0 = s0 / ch0, momentum0 = (m.enthalpy_density(outer.stretch)) * s0 * at_outer.sinh;
+  const Hyperbolic outer_hyperbolic = hyperbolic(phi0);
+  const double ch0 = outer_hyperbolic.cosh;
+  const double tau0 = s0 / ch0, momentum0 = at_outer.enthalpy * s0 * outer_hyperbolic.sinh;
   const double log_ratio = star.log() - outer.stretch.log();
   for (int step = 0; step < 8; ++step) {
     const Hyperbolic at_phi = hyperbolic(phi);
@@ -100,31 +106,32 @@ Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch 
   return Solved<double>{phi, Status::ok};
 }
 
-Solved<double> curve_rapidity(const Material& m, const State& outer, double psi_outer, double outer_speed, double z,
-                              double psi_z, int family, bool* shock) {
-  const Stretch s = Stretch::from_log(z);
+Solved<double> curve_rapidity(const Material& m, CurveEnd& outer, TrialStretch& at, int family, bool* shock) {
+  const Stretch s = Stretch::from_log(at.z);
   // The state on the integral curve; the wave is a shock where the characteristics of its
   // family converge across it (as wave_is_shock decides, with the outer speed given).
-  const double on_curve = outer.rapidity + family * (psi_z - psi_outer);
+  const double on_curve = outer.state.rapidity + family * (at.psi - outer.psi);
   bool converging = false;
-  if (!m.linearly_degenerate() && s != outer.stretch) {
-    const double star_speed = characteristic_speed(m, State{on_curve, s}, family);
-    converging = family < 0 ? !(outer_speed < star_speed) : !(star_speed < outer_speed);
+  if (!m.linearly_degenerate() && s != outer.state.stretch) {
+    const double star_speed = characteristic_speeds(at.sound_speed, State{on_curve, s}, family).lagrangian;
+    converging = family < 0 ? !(outer.speed < star_speed) : !(star_speed < outer.speed);
   }
   if (shock != nullptr) *shock = converging;
-  if (converging) return hugoniot_rapidity(m, outer, s, family);
+  if (converging)
+    return hugoniot_rapidity(outer.state, outer.laws.at(m, outer.state.stretch), s, at.laws.at(m, s), family);
   return Solved<double>{on_curve, Status::ok};
 }
 
-Solved<SameMaterialStar> same_material_star(const Material& m, const CrossingEnds& ends, const State& guess,
-                                            double accept) {
+Solved<SameMaterialStar> same_material_star(const Material& m, CrossingEnds& ends, const State& guess, double accept) {
   using Result = Solved<SameMaterialStar>;
   SameMaterialStar star;
+  double sound_speed = 0.0;  // at the last stretch tried
   auto mismatch = [&](double z, double& g) {
-    const double psi_z = m.riemann_psi(Stretch::from_log(z));
-    const Solved<double> a = curve_rapidity(m, ends.left, ends.psi_left, ends.speed_left, z, psi_z, -1, &star.shock[0]);
-    const Solved<double> b =
-        curve_rapidity(m, ends.right, ends.psi_right, ends.speed_right, z, psi_z, +1, &star.shock[1]);
+    const Stretch s = Stretch::from_log(z);
+    TrialStretch at{z, m.riemann_psi(s), m.sound_speed(s), {}};
+    sound_speed = at.sound_speed;
+    const Solved<double> a = curve_rapidity(m, ends.left, at, -1, &star.shock[0]);
+    const Solved<double> b = curve_rapidity(m, ends.right, at, +1, &star.shock[1]);
     if (!a.ok() || !b.ok()) return false;
     g = a.value - b.value;
     star.state = State{0.5 * (a.value + b.value), Stretch::from_log(z)};
@@ -140,7 +147,7 @@ Solved<SameMaterialStar> same_material_star(const Material& m, const CrossingEnd
   if (!mismatch(z0, g0)) return Result::failure(Status::not_converged);
   if (settled(g0)) return Result{star, Status::ok};
   // dφ/d ln s is +c_s on the C− curve and −c_s on the C+ curve near the star: g' ≈ 2 c_s.
-  double z1 = z0 - g0 / (2.0 * m.sound_speed(guess.stretch)), g1 = 0.0;
+  double z1 = z0 - g0 / (2.0 * sound_speed), g1 = 0.0;
   for (int iteration = 0; iteration < 40; ++iteration) {
     const StretchRange range = m.admissible();
     if (!(z1 > range.log_min && z1 < range.log_max)) return Result::failure(Status::out_of_range);

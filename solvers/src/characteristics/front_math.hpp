@@ -2,6 +2,8 @@
 // Closed forms the front tracker is built on: the strength of a wave, the speed of a front
 // from the label jump condition, the Hugoniot in closed form and the exact star state of
 // two states of one material.
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "rigidity/material.hpp"
@@ -35,14 +37,49 @@ FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b,
 /// condition [p][τ] + [v][M] = 0, with [τ] and [v] free of cancellation, to round-off.
 Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch star, int family);
 
+/// What the jump conditions ask of a stretch: p and e + p (NaN until evaluated).
+struct JumpLaws {
+  double pressure = std::numeric_limits<double>::quiet_NaN();
+  double enthalpy = std::numeric_limits<double>::quiet_NaN();
+  /// Evaluates them once.
+  const JumpLaws& at(const Material& m, Stretch s) {
+    if (std::isnan(pressure)) {
+      pressure = m.pressure(s);
+      enthalpy = m.enthalpy_density(s);
+    }
+    return *this;
+  }
+};
+
+/// hugoniot_rapidity with p and e + p of both stretches given.
+Solved<double> hugoniot_rapidity(const State& outer, const JumpLaws& at_outer, Stretch star, const JumpLaws& at_star,
+                                 int family);
+
+/// One end of a wave curve: its state, Ψ there, the characteristic speed (dX/dt) of the
+/// curve's family there, and p and e + p once a Hugoniot asks for them.
+struct CurveEnd {
+  State state;
+  double psi = 0.0;
+  double speed = 0.0;
+  JumpLaws laws;
+};
+
+/// A stretch e^z tried on both curves of a crossing: Ψ and c_s there, and p and e + p once
+/// a Hugoniot asks for them.
+struct TrialStretch {
+  double z = 0.0;
+  double psi = 0.0;
+  double sound_speed = 0.0;
+  JumpLaws laws;
+};
+
 /// The rapidity at stretch e^z on the wave curve of family `family` through `outer`: the
 /// closed-form Hugoniot where that wave is a shock, else the integral curve (the other
-/// family's invariant carried across: φ = φ_outer + family (Ψ − Ψ_outer)).
-/// `outer_speed` is the characteristic speed of family `family` in `outer` (a root find along
-/// one curve asks for it once), `psi_z` = Ψ(e^z) (both curves of a crossing ask for it at
-/// the same z). `shock`, if given, says which of the two it was.
-Solved<double> curve_rapidity(const Material& m, const State& outer, double psi_outer, double outer_speed, double z,
-                              double psi_z, int family, bool* shock = nullptr);
+/// family's invariant carried across: φ = φ_outer + family (Ψ − Ψ_outer)). Both curves of a
+/// crossing are asked at the same trial stretch, and a root find along one curve asks at
+/// the same outer state, so each evaluates its material there once. `shock`, if given, says
+/// which of the two it was.
+Solved<double> curve_rapidity(const Material& m, CurveEnd& outer, TrialStretch& at, int family, bool* shock = nullptr);
 
 /// The star state of two states of one material, with what its two waves are: [0] the C−
 /// wave (from `left`), [1] the C+ wave (from `right`). `off` is how far the star's rapidity
@@ -59,9 +96,8 @@ struct SameMaterialStar {
 /// characteristic speed of the family whose curve leaves each (C− from the left state, C+
 /// from the right one). A crossing has them at hand.
 struct CrossingEnds {
-  State left, right;
-  double psi_left = 0.0, psi_right = 0.0;
-  double speed_left = 0.0, speed_right = 0.0;
+  CurveEnd left;   ///< of the C− curve
+  CurveEnd right;  ///< of the C+ curve
 };
 
 /// The exact star state between two states of one material: ln s* where the C− curve
@@ -71,7 +107,7 @@ struct CrossingEnds {
 /// evaluation is the answer: the search ends at a mismatch at round-off, or at one below
 /// `accept` (a caller that books `off` as an error may take the guess of a weak crossing as
 /// it is).
-Solved<SameMaterialStar> same_material_star(const Material& m, const CrossingEnds& ends, const State& guess,
+Solved<SameMaterialStar> same_material_star(const Material& m, CrossingEnds& ends, const State& guess,
                                             double accept = 0.0);
 
 bool same_state(const State& a, const State& b);

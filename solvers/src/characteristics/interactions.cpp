@@ -58,18 +58,19 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   if (before.X_at(t) >= X - tolerance || after.X_at(t) <= X + tolerance) return false;  // a crowd: resolve in full
   const State& left = before.right.state;
   const State& right = nb.right.state;
-  const double psi_left = memo_->psi(*m, left.stretch), psi_right = memo_->psi(*m, right.stretch);
+  const double psi_left = psi_of(before.right), psi_right = psi_of(nb.right);
   const double j_plus = left.rapidity + psi_left;
   const double j_minus = right.rapidity - psi_right;
   const double psi_star = 0.5 * (j_plus - j_minus);
   if (!(psi_star < m->psi_max())) return false;
   if (m->cavitation_pressure() > -kInf) {
-    const Solved<Stretch> parting = m->stretch_at_pressure(m->cavitation_pressure());
-    if (!parting.ok() || psi_star < memo_->psi(*m, parting.value)) return false;
+    const Solved<double> parting = memo_->parting_psi(*m);
+    if (!parting.ok() || psi_star < parting.value) return false;
   }
   const Solved<Stretch> star_stretch = memo_->stretch_at_psi(*m, psi_star);
   if (!star_stretch.ok() || !representable(star_stretch.value)) return false;  // resolved in full, and reported
   State star{0.5 * (j_plus + j_minus), star_stretch.value};
+  double psi_of_star = psi_star;
 
   // The outgoing waves: kinds, strengths, and how far each is from its wave curve.
   FrontKind kinds[2] = {FrontKind::contact, FrontKind::contact};
@@ -85,12 +86,12 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     // The star where the two wave curves meet, to round-off, or as soon as they miss each
     // other by less than star_mismatch_ (then booked on both fronts like a shock held off
     // its Hugoniot: a weak crossing often takes the two-rarefaction star as it is).
-    const CrossingEnds ends{
-        left, right, psi_left, psi_right, characteristic_speed(*m, left, -1), characteristic_speed(*m, right, +1)};
+    CrossingEnds ends{CurveEnd{left, psi_left, speeds_of(before.right, -1).lagrangian, {}},
+                      CurveEnd{right, psi_right, speeds_of(nb.right, +1).lagrangian, {}}};
     const Solved<SameMaterialStar> found = same_material_star(*m, ends, star, star_mismatch_);
     if (!found.ok()) return false;
     star = found.value.state;
-    double psi_of_star = m->riemann_psi(star.stretch);
+    psi_of_star = m->riemann_psi(star.stretch);
     bool shock[2] = {found.value.shock[0], found.value.shock[1]};
     for (int k = 0; k < 2; ++k) off_curve[k] = shock[k] || !found.value.converged ? found.value.off[k] : 0.0;
     strength_minus = std::abs((star.rapidity - left.rapidity) - (psi_of_star - psi_left));
@@ -149,7 +150,7 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   record_segment(nb, t);
   if (held_back) {
     error_defects_ += strength_minus * std::min(piece_length(na.piece),
-                                                std::abs(characteristic_speed(*m, left, -1)) * (scene_.t_end - t));
+                                                std::abs(speeds_of(before.right, -1).lagrangian) * (scene_.t_end - t));
     ++suppressed_;
     const int keep_before = na.prev;
     account_front_end(a, t);  // its shock books close while its neighbours are still its own
@@ -163,9 +164,20 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   account_front_end(a, t);
   account_front_end(b, t);
   result_.stats.fronts += 2;
-  set_front(a, -1, kinds[0], *m, left, star, t, X, x, off_curve[0], born[0], strength_minus);
-  set_front(b, +1, kinds[1], *m, star, right, t, X, x, off_curve[1], born[1], strength_plus);
-  na.right.state = star;
+  // The star's Ψ is at hand; in a linearly degenerate material its C− speeds are those of
+  // `left` (J+ is the same) and its C+ speeds those of `right` (J− is), and so are the
+  // speeds of the two fronts.
+  Region star_region{m, star};
+  star_region.psi = psi_of_star;
+  if (degenerate) {
+    star_region.speeds[0] = speeds_of(before.right, -1);
+    star_region.speeds[1] = speeds_of(nb.right, +1);
+  }
+  set_front(a, -1, kinds[0], *m, left, star, t, X, x, off_curve[0], born[0], strength_minus,
+            degenerate ? &star_region.speeds[0] : nullptr);
+  set_front(b, +1, kinds[1], *m, star, right, t, X, x, off_curve[1], born[1], strength_plus,
+            degenerate ? &star_region.speeds[1] : nullptr);
+  na.right = star_region;
   schedule_meet(na.prev);
   schedule_meet(a);
   schedule_meet(b);
@@ -184,11 +196,13 @@ bool Tracker::interact_in_place(int a, int b, double t) {
 /// speed; shocks and fan steps at the speed the label jump condition gives, so that the lab
 /// position of every label stays continuous across them.
 void Tracker::set_front(int id, int family, FrontKind kind, const Material& m, const State& left, const State& right,
-                        double t, double X, double x, double off_hugoniot, double born, double strength) {
+                        double t, double X, double x, double off_hugoniot, double born, double strength,
+                        const FrontSpeeds* known) {
   Node& n = nodes_[id];
   n.strength = strength;
-  const FrontSpeeds speeds =
-      kind == FrontKind::contact ? memo_->speeds(m, right, family) : label_jump_speeds(m, left, right, family);
+  const FrontSpeeds speeds = known != nullptr             ? *known
+                             : kind == FrontKind::contact ? memo_->speeds(m, right, family)
+                                                          : label_jump_speeds(m, left, right, family);
   n.born = born;
   n.family = family;
   n.front_kind = kind;

@@ -32,6 +32,17 @@ class MaterialMemo {
     return slot.stretch;
   }
 
+  /// Ψ at the stretch where m parts (its cavitation pressure); not ok if it has none there.
+  Solved<double> parting_psi(const Material& m) {
+    PartingSlot& slot = parting_[(reinterpret_cast<std::uintptr_t>(&m) >> 4) & (kPartingSlots - 1)];
+    if (slot.material != &m) {
+      const Solved<Stretch> parting = m.stretch_at_pressure(m.cavitation_pressure());
+      slot = PartingSlot{&m, parting.ok() ? Solved<double>{m.riemann_psi(parting.value), Status::ok}
+                                          : Solved<double>::failure(parting.status)};
+    }
+    return slot.psi;
+  }
+
   /// characteristic_speeds(m, state, family)
   FrontSpeeds speeds(const Material& m, const State& state, int family) {
     SpeedSlot& slot = speeds_[index(&m, state.rapidity, state.stretch.log(), family)];
@@ -61,6 +72,12 @@ class MaterialMemo {
     FrontSpeeds speeds{};
   };
 
+  static constexpr std::size_t kPartingSlots = 8;
+  struct PartingSlot {
+    const Material* material = nullptr;
+    Solved<double> psi{0.0, Status::ok};
+  };
+
   static std::size_t index(const Material* m, double a, double b, int family) {
     std::uint64_t h = std::bit_cast<std::uint64_t>(a) * 0x9E3779B97F4A7C15ULL;
     h ^= std::bit_cast<std::uint64_t>(b) * 0xC2B2AE3D27D4EB4FULL;
@@ -73,6 +90,7 @@ class MaterialMemo {
   std::array<PsiSlot, kSlots> psi_{};
   std::array<StretchSlot, kSlots> stretch_{};
   std::array<SpeedSlot, kSlots> speeds_{};
+  std::array<PartingSlot, kPartingSlots> parting_{};
 };
 
 }  // namespace rigidity::characteristics

@@ -85,9 +85,16 @@ enum class NodeKind : std::uint8_t { front, interface, left_end, right_end, ligh
 /// What a body end touches.
 enum class Attach : std::uint8_t { free, boundary, body };
 
+/// A state of a material between two nodes, with what crossings ask of it remembered:
+/// Ψ of its stretch and the characteristic speeds of both families (NaN until asked for;
+/// Tracker::psi_of and Tracker::speeds_of fill them). A region is written whole, so a new
+/// state never keeps the old one's values.
 struct Region {
   const Material* material = nullptr;
   State state;
+  mutable double psi = std::numeric_limits<double>::quiet_NaN();
+  mutable FrontSpeeds speeds[2] = {{std::numeric_limits<double>::quiet_NaN(), 0.0},
+                                   {std::numeric_limits<double>::quiet_NaN(), 0.0}};  ///< [0] C−, [1] C+
 };
 
 /// A node of a piece's list: a front, a material interface or an end. Between
@@ -280,7 +287,8 @@ class Tracker {
   std::vector<MergeSegment> segments_;
   double merge_cost(int p, int q, double t, double* X_merged) const;
   void set_front(int id, int family, FrontKind kind, const Material& m, const State& left, const State& right, double t,
-                 double X, double x, double off_hugoniot, double born, double strength);
+                 double X, double x, double off_hugoniot, double born, double strength,
+                 const FrontSpeeds* known = nullptr);
   void resolve_group(std::vector<int>& group, double t);
   void wave(const Material& m, const State& outer, const State& star, int family, WaveStates& w);
   void emit_fronts(const Material& m, const WaveStates& w, int family, int piece, double t, double X, double x,
@@ -305,6 +313,17 @@ class Tracker {
   void absorb_light(int piece, double t);
   bool merge_light(int piece, int family, double t);
   [[nodiscard]] State light_state(const Material& m, double j_plus, double j_minus) const;
+  /// Ψ of a region's state, remembered in the region.
+  double psi_of(const Region& r) {
+    if (std::isnan(r.psi)) r.psi = memo_->psi(*r.material, r.state.stretch);
+    return r.psi;
+  }
+  /// The characteristic speeds of family `family` in a region's state, remembered in the region.
+  const FrontSpeeds& speeds_of(const Region& r, int family) {
+    FrontSpeeds& sp = r.speeds[family > 0 ? 1 : 0];
+    if (std::isnan(sp.lagrangian)) sp = characteristic_speeds(*r.material, r.state, family);
+    return sp;
+  }
   [[nodiscard]] double invariant(const Material& m, const State& st, int family) const {
     return st.rapidity + family * memo_->psi(m, st.stretch);
   }
