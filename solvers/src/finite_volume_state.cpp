@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "rigidity/hyperbolic.hpp"
 #include "rigidity/solvers/finite_volume.hpp"
 
 namespace rigidity::finite_volume {
@@ -23,28 +24,6 @@ double log_cosh(double a, double e_minus_a) { return a + std::log1p(e_minus_a * 
 double log_cosh(double phi) {
   const double a = std::abs(phi);
   return log_cosh(a, std::exp(-a));
-}
-
-/// sinh φ, cosh φ and e^±φ from one exponential: below |φ| = 1 from expm1, so that
-/// sinh φ is exact near 0.
-struct Hyperbolic {
-  double sinh = 0.0, cosh = 1.0, ep = 1.0, em = 1.0;  ///< ep = e^φ, em = e^−φ
-};
-Hyperbolic hyperbolic(double phi) {
-  Hyperbolic h;
-  if (std::abs(phi) < 1.0) {
-    const double u = std::expm1(phi);
-    h.ep = 1.0 + u;
-    h.em = 1.0 / h.ep;
-    h.sinh = 0.5 * u * (u + 2.0) / (1.0 + u);
-    h.cosh = 1.0 + 0.5 * u * u / (1.0 + u);
-  } else {
-    h.ep = std::exp(phi);
-    h.em = 1.0 / h.ep;
-    h.sinh = 0.5 * (h.ep - h.em);
-    h.cosh = 0.5 * (h.ep + h.em);
-  }
-  return h;
 }
 
 /// acosh(e^d) for d ≥ 0: the rapidity at which cosh φ = e^d.

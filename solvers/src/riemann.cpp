@@ -13,6 +13,7 @@
 #include <system_error>
 
 #include "rigidity/errors.hpp"
+#include "rigidity/hyperbolic.hpp"
 #include "rigidity/number_text.hpp"
 
 namespace rigidity {
@@ -784,17 +785,22 @@ FrontSpeeds characteristic_speeds(const Material& m, const State& state, int fam
 
 FrontSpeeds characteristic_speeds(double c, const State& state, int family) {
   if (c == 1.0) {
-    // Signals at light speed: dX/dt = ± e^∓φ / s, dx/dt = ±1 exactly.
+    // Signals at light speed: dX/dt = ± e^∓φ / s, dx/dt = ±1 exactly (from ln s: no overflow).
     return FrontSpeeds{family * std::exp(-family * state.rapidity - state.stretch.log()), static_cast<double>(family)};
   }
+  return characteristic_speeds(c, state.rapidity, state.stretch.value(), family);
+}
+
+FrontSpeeds characteristic_speeds(double c, double rapidity, double s, int family) {
+  if (c == 1.0) return FrontSpeeds{family * std::exp(-family * rapidity - std::log(s)), static_cast<double>(family)};
   // cosh φ ± c sinh φ = ((1 ± c) e^φ + (1 ∓ c) e^−φ)/2 and sinh φ ± c cosh φ likewise:
   // free of cancellation for c → 1 and large |φ| (for c = 1 exactly e^±φ).
-  const double ep = std::exp(state.rapidity), em = 1.0 / ep;
+  const double ep = std::exp(rapidity), em = 1.0 / ep;
   const double a = family > 0 ? 1.0 + c : 1.0 - c;
   const double b = family > 0 ? 1.0 - c : 1.0 + c;
   const double denominator = 0.5 * (a * ep + b * em);
   const double numerator = 0.5 * (a * ep - b * em);
-  return FrontSpeeds{family * c / (state.stretch.value() * denominator), numerator / denominator};
+  return FrontSpeeds{family * c / (s * denominator), numerator / denominator};
 }
 
 double characteristic_speed(const Material& m, const State& state, int family) {
@@ -809,17 +815,22 @@ Solved<double> shock_dissipation_rate(const Material& m, const State& left, cons
                                       double relative_precision) {
   const double phi_l = left.rapidity, phi_r = right.rapidity;
   const double s_l = left.stretch.value();
-  const double ch_l = std::cosh(phi_l), ch_r = std::cosh(phi_r);
-  const double v_l = std::tanh(phi_l), v_r = std::tanh(phi_r);
+  const Hyperbolic at_l = hyperbolic(phi_l), at_r = hyperbolic(phi_r);
+  const double ch_l = at_l.cosh, ch_r = at_r.cosh;
+  const auto velocity = [](double phi, const Hyperbolic& at) {
+    return std::abs(phi) < 300.0 ? at.sinh / at.cosh : std::tanh(phi);
+  };
+  const double v_l = velocity(phi_l, at_l), v_r = velocity(phi_r, at_r);
   const double p_l = m.pressure(left.stretch), p_r = m.pressure(right.stretch);
   const double dp = p_r - p_l;
-  // [v] and [τ] to full relative precision however weak the jump:
-  //   [v] = sinh(φr − φl)/(cosh φl cosh φr),
+  // [v] and [τ] to full relative precision however weak the jump, with h = (φr − φl)/2:
+  //   [v] = sinh(φr − φl)/(cosh φl cosh φr) = 2 sinh h cosh h/(cosh φl cosh φr),
   //   [τ] = τl (exp(ln(sr/sl) + ln(cosh φl / cosh φr)) − 1),
-  //   cosh φl / cosh φr − 1 = 2 sinh((φl + φr)/2) sinh((φl − φr)/2) / cosh φr.
-  const double dv = std::sinh(phi_r - phi_l) / (ch_l * ch_r);
-  const double cosh_ratio =
-      std::log1p(2.0 * std::sinh(0.5 * (phi_l + phi_r)) * std::sinh(0.5 * (phi_l - phi_r)) / ch_r);
+  //   cosh φl / cosh φr − 1 = 2 sinh((φl + φr)/2) sinh((φl − φr)/2) / cosh φr
+  //                         = −2 sinh(φl + h) sinh h / cosh φr.
+  const double sh = std::sinh(0.5 * (phi_r - phi_l)), chh = std::sqrt(1.0 + sh * sh);
+  const double dv = 2.0 * sh * chh / (ch_l * ch_r);
+  const double cosh_ratio = std::log1p(-2.0 * (at_l.sinh * chh + ch_l * sh) * sh / ch_r);
   const double dtau = s_l / ch_l * std::expm1(right.stretch.log() - left.stretch.log() + cosh_ratio);
   if (dtau == 0.0) return {0.0, Status::ok};
   const double speed = -dv / dtau;  // label jump condition m [τ] = −[v]

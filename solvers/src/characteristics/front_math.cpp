@@ -6,22 +6,12 @@
 #include <sstream>
 #include <string>
 
+#include "rigidity/hyperbolic.hpp"
+
 namespace rigidity::characteristics {
 
 namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-
-struct Hyperbolic {
-  double cosh = 1.0, sinh = 0.0;
-};
-
-/// cosh φ and sinh φ from one exponential: with u = e^φ − 1, sinh φ = u (u + 2) / (2 (1 + u))
-/// has no cancellation near 0; beyond |φ| = 300 (where e^φ nears overflow) the library's.
-Hyperbolic hyperbolic(double phi) {
-  if (!(std::abs(phi) < 300.0)) return {std::cosh(phi), std::sinh(phi)};
-  const double u = std::expm1(phi);
-  return {0.5 * (1.0 + u + 1.0 / (1.0 + u)), 0.5 * u * (u + 2.0) / (1.0 + u)};
-}
 }  // namespace
 
 double wave_strength(const Material& m, const State& a, const State& b, int family) {
@@ -57,7 +47,7 @@ Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch 
 
 Solved<double> hugoniot_rapidity(const State& outer, const JumpLaws& at_outer, Stretch star, const JumpLaws& at_star,
                                  int family) {
-  const double s0 = outer.stretch.value(), s = star.value();
+  const double s0 = at_outer.stretch, s = at_star.stretch;
   const double dp = at_star.pressure - at_outer.pressure;
   const double w = at_star.enthalpy;
   const double qa = s * s * w * w;
@@ -113,12 +103,14 @@ Solved<double> curve_rapidity(const Material& m, CurveEnd& outer, TrialStretch& 
   const double on_curve = outer.state.rapidity + family * (at.psi - outer.psi);
   bool converging = false;
   if (!m.linearly_degenerate() && s != outer.state.stretch) {
-    const double star_speed = characteristic_speeds(at.sound_speed, State{on_curve, s}, family).lagrangian;
+    const double star_speed = characteristic_speeds(at.sound_speed, on_curve, at.stretch, family).lagrangian;
     converging = family < 0 ? !(outer.speed < star_speed) : !(star_speed < outer.speed);
   }
   if (shock != nullptr) *shock = converging;
-  if (converging)
-    return hugoniot_rapidity(outer.state, outer.laws.at(m, outer.state.stretch), s, at.laws.at(m, s), family);
+  if (converging) {
+    if (std::isnan(at.laws.stretch)) at.laws = JumpLaws{at.stretch, m.pressure(s), m.enthalpy_density(s)};
+    return hugoniot_rapidity(outer.state, outer.laws.at(m, outer.state.stretch), s, at.laws, family);
+  }
   return Solved<double>{on_curve, Status::ok};
 }
 
@@ -128,7 +120,7 @@ Solved<SameMaterialStar> same_material_star(const Material& m, CrossingEnds& end
   double sound_speed = 0.0;  // at the last stretch tried
   auto mismatch = [&](double z, double& g) {
     const Stretch s = Stretch::from_log(z);
-    TrialStretch at{z, m.riemann_psi(s), m.sound_speed(s), {}};
+    TrialStretch at{z, s.value(), m.riemann_psi(s), m.sound_speed(s), {}};
     sound_speed = at.sound_speed;
     const Solved<double> a = curve_rapidity(m, ends.left, at, -1, &star.shock[0]);
     const Solved<double> b = curve_rapidity(m, ends.right, at, +1, &star.shock[1]);

@@ -37,13 +37,15 @@ FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b,
 /// condition [p][τ] + [v][M] = 0, with [τ] and [v] free of cancellation, to round-off.
 Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch star, int family);
 
-/// What the jump conditions ask of a stretch: p and e + p (NaN until evaluated).
+/// What the jump conditions ask of a stretch: s, p and e + p (NaN until evaluated).
 struct JumpLaws {
-  double pressure = std::numeric_limits<double>::quiet_NaN();
-  double enthalpy = std::numeric_limits<double>::quiet_NaN();
+  double stretch = std::numeric_limits<double>::quiet_NaN();
+  double pressure = 0.0;
+  double enthalpy = 0.0;
   /// Evaluates them once.
   const JumpLaws& at(const Material& m, Stretch s) {
-    if (std::isnan(pressure)) {
+    if (std::isnan(stretch)) {
+      stretch = s.value();
       pressure = m.pressure(s);
       enthalpy = m.enthalpy_density(s);
     }
@@ -51,7 +53,7 @@ struct JumpLaws {
   }
 };
 
-/// hugoniot_rapidity with p and e + p of both stretches given.
+/// hugoniot_rapidity with s, p and e + p of both stretches given.
 Solved<double> hugoniot_rapidity(const State& outer, const JumpLaws& at_outer, Stretch star, const JumpLaws& at_star,
                                  int family);
 
@@ -64,10 +66,11 @@ struct CurveEnd {
   JumpLaws laws;
 };
 
-/// A stretch e^z tried on both curves of a crossing: Ψ and c_s there, and p and e + p once
+/// A stretch e^z tried on both curves of a crossing: s, Ψ and c_s there, and p and e + p once
 /// a Hugoniot asks for them.
 struct TrialStretch {
   double z = 0.0;
+  double stretch = 0.0;  ///< e^z
   double psi = 0.0;
   double sound_speed = 0.0;
   JumpLaws laws;

@@ -112,8 +112,10 @@ struct FrontSpeeds {
 /// Both speeds of the characteristic of family `family` (+1 or -1) in a state:
 /// dX/dt = ± c_s / (s γ (1 ± v c_s)),  dx/dt = (v ± c_s)/(1 ± v c_s).
 [[nodiscard]] FrontSpeeds characteristic_speeds(const Material& material, const State& state, int family);
-/// The same with the sound speed c_s of the state's stretch given (a caller that has it).
+/// The same with the sound speed c_s of the state's stretch given (a caller that has it),
+/// and with the stretch s itself given.
 [[nodiscard]] FrontSpeeds characteristic_speeds(double sound_speed, const State& state, int family);
+[[nodiscard]] FrontSpeeds characteristic_speeds(double sound_speed, double rapidity, double stretch, int family);
 /// True if the wave of family `family` from `outer` to the star stretch is a shock (Lax:
 /// the characteristics run into it), false if it is a rarefaction fan or a jump of a
 /// linearly degenerate material. Decided on the rarefaction curve: a fan must spread,
