@@ -280,7 +280,7 @@ TEST(Spray, ASprayWhoseDropletsOutgrowTheToleranceIsResolvedToTheirLevel) {
   // doing so (the spray is chaotic: at 1e-3 they book more still). Resolving its waves to
   // 1e-4 would cost ~1/tolerance² per crossing (24× the interactions of tolerance 1e-3
   // when it did) for a bound the droplets hold up anyway. The run coarsens waves and
-  // droplets while the waves have booked less than half what the droplets have, says so,
+  // droplets while the waves have booked less than the droplets have, says so,
   // and its books still close. (That the bound holds at all is tested on scenes whose
   // truth is known; a spray's truth is not.)
   const SceneRun fine = run(kSpray, 1e-4, 20.0);
@@ -288,14 +288,15 @@ TEST(Spray, ASprayWhoseDropletsOutgrowTheToleranceIsResolvedToTheirLevel) {
   ASSERT_EQ(fine.result.status, "ok");
   const double resolution = solver_number(fine.result, "wave_resolution");
   EXPECT_GT(resolution, 1e-4);
-  EXPECT_LE(resolution, 0.005 * (1.0 + 1e-12));
+  EXPECT_LE(resolution, 0.003 * (1.0 + 1e-12));  // where the front cap reaches its floor
   bool warned = false;
   for (const std::string& w : fine.result.warnings)
     warned = warned || w.find("more coarsely than solver.tolerance") != std::string::npos;
   EXPECT_TRUE(warned) << "a coarser resolution than the tolerance must be reported";
-  // The waves' share follows the droplets': it stays below theirs.
+  // The waves' share follows the droplets': about theirs (the resolution coarsens while the
+  // waves have booked less, and the merges after the last droplet are not rebalanced).
   EXPECT_LT(solver_number(fine.result, "error_merges") + solver_number(fine.result, "error_fans"),
-            solver_number(fine.result, "error_droplets"));
+            2.0 * solver_number(fine.result, "error_droplets"));
   EXPECT_LT(static_cast<double>(fine.result.stats.interactions),
             15.0 * static_cast<double>(coarse.result.stats.interactions));
   const Conservation& c = fine.result.conservation;
