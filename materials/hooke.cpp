@@ -62,7 +62,8 @@ class Hooke final : public Material {
   explicit Hooke(const ParameterValues& values)
       : Material(values.number("rest_density")),
         b_(values.number("wave_speed")),
-        a_(std::sqrt((1.0 - b_) * (1.0 + b_))) {
+        a_(std::sqrt((1.0 - b_) * (1.0 + b_))),
+        psi_max_(a_ > 0.0 ? std::atanh(b_) : kInfinity) {
     if (!(b_ > 0.0 && b_ <= 1.0)) throw std::invalid_argument("hooke: wave_speed must be in (0, 1]");
   }
 
@@ -160,7 +161,7 @@ class Hooke final : public Material {
   /// lim_{s→∞} p = −ρ00 b/(1 + b) (R → b).
   [[nodiscard]] double max_tension() const override { return -rest_density() * b_ / (1.0 + b_); }
   /// lim_{s→0} Ψ = asinh(b/a) = artanh(b) (+inf for V = 1).
-  [[nodiscard]] double psi_max() const override { return a_ > 0.0 ? std::atanh(b_) : kInfinity; }
+  [[nodiscard]] double psi_max() const override { return psi_max_; }
   [[nodiscard]] double psi_min() const override { return -kInfinity; }
   /// Ψ + artanh(c_s) = artanh(b) is constant: the lab speed of each family is constant
   /// along its own waves (SPEC §2).
@@ -176,8 +177,9 @@ class Hooke final : public Material {
   /// e + p = ρ00/(s² R) for s ≥ 1.
   [[nodiscard]] double tension_enthalpy(double t) const { return rest_density() * std::exp(-2.0 * t) / r_of(t); }
 
-  double b_;  ///< V: shock speed relative to the unstrained material
-  double a_;  ///< sqrt(1 − V²)
+  double b_;        ///< V: shock speed relative to the unstrained material
+  double a_;        ///< sqrt(1 − V²)
+  double psi_max_;  ///< artanh(V), asked for by every crossing
 };
 
 RIGIDITY_REGISTER_MATERIAL(Hooke);

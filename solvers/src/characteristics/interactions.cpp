@@ -12,23 +12,44 @@
 
 namespace rigidity::characteristics {
 
-void Tracker::schedule_meet(int a) {
+double Tracker::meeting_time(int a) const {
   const Node& na = nodes_[a];
   const int b = na.next;
-  if (b != kNone && na.kind != NodeKind::light_store) {  // a light piece's store meets nothing
-    const Node& nb = nodes_[b];
-    const double closing = na.dXdt - nb.dXdt;
-    if (closing > 0.0) {
-      const double t_ref = std::max(na.t0, nb.t0);
-      const double gap = std::max(0.0, nb.X_at(t_ref) - na.X_at(t_ref));
-      const double t = t_ref + gap / closing;
-      if (t <= scene_.t_end) {
-        meetings_.set(a, t, seq_++);
-        return;
-      }
-    }
+  if (b == kNone || na.kind == NodeKind::light_store) return kInf;  // a light piece's store meets nothing
+  const Node& nb = nodes_[b];
+  const double closing = na.dXdt - nb.dXdt;
+  if (!(closing > 0.0)) return kInf;
+  const double t_ref = std::max(na.t0, nb.t0);
+  const double gap = std::max(0.0, nb.X_at(t_ref) - na.X_at(t_ref));
+  const double t = t_ref + gap / closing;
+  return t <= scene_.t_end ? t : kInf;
+}
+
+void Tracker::schedule_meet(int a) {
+  const double t = meeting_time(a);
+  if (t < kInf) {
+    meetings_.set(a, t, seq_++);
+  } else {
+    meetings_.erase(a);
   }
-  meetings_.erase(a);
+}
+
+void Tracker::schedule_meets(int a, int b) {
+  const double ta = meeting_time(a), tb = meeting_time(b);
+  if (ta == kInf && tb < kInf && meetings_.contains(a) && !meetings_.contains(b)) {
+    meetings_.move(a, b, tb, seq_++);  // a's entry (the top, after a crossing) becomes b's
+    return;
+  }
+  if (ta < kInf) {
+    meetings_.set(a, ta, seq_++);
+  } else {
+    meetings_.erase(a);
+  }
+  if (tb < kInf) {
+    meetings_.set(b, tb, seq_++);
+  } else {
+    meetings_.erase(b);
+  }
 }
 
 /// Two fronts of one material meeting with nothing else there, done in place: they leave
@@ -179,8 +200,7 @@ bool Tracker::interact_in_place(int a, int b, double t) {
             degenerate ? &star_region.speeds[1] : nullptr);
   na.right = star_region;
   schedule_meet(na.prev);
-  schedule_meet(a);
-  schedule_meet(b);
+  schedule_meets(a, b);
   if (degenerate) {
     merge_nearby(a, t);
     merge_nearby(b, t);

@@ -39,6 +39,23 @@ class MeetingQueue {
     }
   }
 
+  [[nodiscard]] bool contains(int node) const {
+    return node < static_cast<int>(position_.size()) && position_[static_cast<std::size_t>(node)] != kAbsent;
+  }
+
+  /// Hands the entry of `from` (which has one) to `to` (which has none), at time t.
+  void move(int from, int to, double t, std::uint64_t seq) {
+    grow(to);
+    const std::size_t i = static_cast<std::size_t>(position_[static_cast<std::size_t>(from)]);
+    position_[static_cast<std::size_t>(from)] = kAbsent;
+    const Entry e{t, seq, to};
+    if (i > 0 && earlier(e, heap_[(i - 1) / kArity])) {
+      sift_up(i, e);
+    } else {
+      sift_down(i, e);
+    }
+  }
+
   void erase(int node) {
     if (node >= static_cast<int>(position_.size())) return;
     const int at = position_[static_cast<std::size_t>(node)];

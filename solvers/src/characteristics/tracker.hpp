@@ -268,7 +268,12 @@ class Tracker {
     queue_.pop_back();
   }
   bool valid(const Event& e) const;
+  /// When node a meets its right neighbour (kInf: never, or after t_end).
+  [[nodiscard]] double meeting_time(int a) const;
   void schedule_meet(int a);
+  /// schedule_meet of a and of b; where a's meeting goes and b's comes (two fronts that
+  /// have just crossed), a's entry is handed to b: one move in the queue instead of two.
+  void schedule_meets(int a, int b);
   void schedule_gaps_around(int piece);
   void schedule_gap(int left_piece, int right_piece);
   void schedule_wall_gap(int side);
