@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -16,15 +17,35 @@
 
 namespace {
 
-/// Every registered material that builds from its declared defaults (a required parameter
-/// without a default, such as a table, leaves it out), by name.
+/// A required number with a bounded range: the middle of it (hooke's and
+/// constant_sound_speed's wave speeds: 0.5).
+std::optional<double> middle_of_range(const rigidity::ParameterSpec& p) {
+  if (p.type != rigidity::ParameterType::number || !p.lower || !p.upper) return std::nullopt;
+  return 0.5 * (p.lower->value + p.upper->value);
+}
+
+/// Every registered material, by name, built from its declared defaults and the middle of the
+/// range of each required number (a required text, such as a table, leaves it out).
 std::vector<std::pair<std::string, std::shared_ptr<const rigidity::Material>>> registered_materials() {
   std::vector<std::pair<std::string, std::shared_ptr<const rigidity::Material>>> out;
   for (const std::string& name : rigidity::MaterialRegistry::instance().names()) {
+    const rigidity::MaterialInfo* info = rigidity::MaterialRegistry::instance().find(name);
+    rigidity::ParameterValues given;
+    bool buildable = true;
+    for (const rigidity::ParameterSpec& p : info->parameters) {
+      if (!p.required) continue;
+      const std::optional<double> v = middle_of_range(p);
+      if (v) {
+        given.set(p.name, *v);
+      } else {
+        buildable = false;  // needs a parameter only a scene can give
+      }
+    }
+    if (!buildable) continue;
     try {
-      out.emplace_back(name, rigidity::build_material(name));
+      out.emplace_back(name, rigidity::build_material(*info, given));
     } catch (const std::invalid_argument&) {
-      // needs a parameter only a scene can give
+      // its parameters at the middle of their ranges are refused: left out
     }
   }
   return out;

@@ -214,6 +214,13 @@ Outcome<double> shock_star_rapidity(const Material& m, const State& outer, Stret
   const double at_outer = (p_star - p_outer) * (star.value() - outer.stretch.value());
   if (std::isnan(at_outer)) return failure();
   if (at_outer >= 0.0) return at(0.0);
+  // The rest-frame closed form and Newton steps on H (hugoniot_rapidity) settle almost every
+  // shock in one or two evaluations; where they do not, or land on the other family's side,
+  // the root is bracketed below.
+  const JumpLaws laws_outer{outer.stretch.value(), p_outer, m.enthalpy_density(outer.stretch)};
+  const JumpLaws laws_star{star.value(), p_star, m.enthalpy_density(star)};
+  const Solved<double> closed = hugoniot_rapidity(outer, laws_outer, star, laws_star, family);
+  if (closed.ok() && direction * (closed.value - outer.rapidity) >= 0.0) return succeeded<double>(closed.value);
   // The rarefaction curve's |ΔΨ| agrees with the shock's rapidity change to second order in the
   // strength: bracket tightly around it, so that Brent needs few steps. Where ΔΨ rounds away
   // (a star an ulp from the outer stretch), c_s |Δ ln s| gives the same scale.
@@ -777,6 +784,64 @@ bool wave_is_shock(const Material& m, const State& outer, Stretch star, int fami
   const double star_speed = characteristic_speed(m, on_curve, family);
   // A C− fan has the outer state on its left, a C+ fan on its right.
   return family < 0 ? !(outer_speed < star_speed) : !(star_speed < outer_speed);
+}
+
+Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch star, int family) {
+  JumpLaws at_outer, at_star;
+  return hugoniot_rapidity(outer, at_outer.at(m, outer.stretch), star, at_star.at(m, star), family);
+}
+
+Solved<double> hugoniot_rapidity(const State& outer, const JumpLaws& at_outer, Stretch star, const JumpLaws& at_star,
+                                 int family) {
+  const double s0 = at_outer.stretch, s = at_star.stretch;
+  const double dp = at_star.pressure - at_outer.pressure;
+  const double w = at_star.enthalpy;
+  const double qa = s * s * w * w;
+  const double qb = 2.0 * s * s * w - dp * s0 * s0;
+  const double qc = s0 * s0 * std::expm1(2.0 * (star.log() - outer.stretch.log()));
+  const double disc = qb * qb - 4.0 * qa * qc;
+  if (!(disc >= 0.0) || dp == 0.0) return Solved<double>::failure(Status::out_of_range);
+  const double root = std::sqrt(disc);
+  const double y = qb >= 0.0 ? 2.0 * qc / (-qb - root) : (-qb + root) / (2.0 * qa);
+  const double u2 = dp * y;
+  if (!(u2 >= 0.0) || !(dp + w * u2 != 0.0) || ((dp + w * u2) > 0.0) != (dp > 0.0))
+    return Solved<double>::failure(Status::out_of_range);
+  const double relative = std::asinh(std::sqrt(u2));
+  // A compression (Ψ grows as s falls, c_s > 0) slows the state behind a C− shock (it moves
+  // against the family's direction).
+  const double direction = star.log() < outer.stretch.log() ? family : -family;
+  double phi = outer.rapidity + direction * relative;
+
+  // The lab frame: g(φ) = [p][τ] + [v][M] = 0 with τ = s/cosh φ, v = tanh φ, M = w s sinh φ.
+  const double phi0 = outer.rapidity;
+  const Hyperbolic outer_hyperbolic = hyperbolic(phi0);
+  const double ch0 = outer_hyperbolic.cosh;
+  const double tau0 = s0 / ch0, momentum0 = at_outer.enthalpy * s0 * outer_hyperbolic.sinh;
+  const double log_ratio = star.log() - outer.stretch.log();
+  bool settled = false;
+  for (int step = 0; step < 8 && !settled; ++step) {
+    const Hyperbolic at_phi = hyperbolic(phi);
+    const double ch = at_phi.cosh, sh = at_phi.sinh;
+    // With d = (φ0 − φ)/2: cosh φ0 / cosh φ − 1 = 2 sinh(φ + d) sinh d / cosh φ, and
+    // sinh(φ − φ0) = −2 sinh d cosh d, each without cancellation.
+    const double sd = std::sinh(0.5 * (phi0 - phi)), cd = std::sqrt(1.0 + sd * sd);
+    const double cosh_ratio = std::log1p(2.0 * (sh * cd + ch * sd) * sd / ch);
+    const double dtau = tau0 * std::expm1(log_ratio + cosh_ratio);
+    const double dv = -2.0 * sd * cd / (ch0 * ch);
+    const double dm = w * s * sh - momentum0;
+    const double g = dp * dtau + dv * dm;
+    const double slope = -dp * s * sh / (ch * ch) + dm / (ch * ch) + dv * w * s * ch;
+    if (!(slope != 0.0) || !std::isfinite(g)) break;
+    const double delta = g / slope;
+    phi -= delta;
+    // Newton's next error is about δ² g''/(2 g'), with g''/g' of the order of 1/(the jump in
+    // rapidity): below round-off, no further step is needed (one, for a weak shock, whose
+    // closed-form start is off by a third-order term only).
+    settled = delta * delta <=
+              4.0 * std::numeric_limits<double>::epsilon() * (1.0 + std::abs(phi)) * std::max(relative, 1e-300);
+  }
+  if (!settled || !std::isfinite(phi)) return Solved<double>::failure(Status::not_converged);
+  return Solved<double>{phi, Status::ok};
 }
 
 FrontSpeeds characteristic_speeds(const Material& m, const State& state, int family) {

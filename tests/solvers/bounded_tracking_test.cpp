@@ -288,7 +288,7 @@ TEST(Spray, ASprayWhoseDropletsOutgrowTheToleranceIsResolvedToTheirLevel) {
   ASSERT_EQ(fine.result.status, "ok");
   const double resolution = solver_number(fine.result, "wave_resolution");
   EXPECT_GT(resolution, 1e-4);
-  EXPECT_LE(resolution, 0.003 * (1.0 + 1e-12));  // where the front cap reaches its floor
+  EXPECT_LE(resolution, 0.005 * (1.0 + 1e-12));  // the coarsest a spray may make it
   bool warned = false;
   for (const std::string& w : fine.result.warnings)
     warned = warned || w.find("more coarsely than solver.tolerance") != std::string::npos;

@@ -40,62 +40,6 @@ FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b,
   return FrontSpeeds{speed, lab};
 }
 
-Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch star, int family) {
-  JumpLaws at_outer, at_star;
-  return hugoniot_rapidity(outer, at_outer.at(m, outer.stretch), star, at_star.at(m, star), family);
-}
-
-Solved<double> hugoniot_rapidity(const State& outer, const JumpLaws& at_outer, Stretch star, const JumpLaws& at_star,
-                                 int family) {
-  const double s0 = at_outer.stretch, s = at_star.stretch;
-  const double dp = at_star.pressure - at_outer.pressure;
-  const double w = at_star.enthalpy;
-  const double qa = s * s * w * w;
-  const double qb = 2.0 * s * s * w - dp * s0 * s0;
-  const double qc = s0 * s0 * std::expm1(2.0 * (star.log() - outer.stretch.log()));
-  const double disc = qb * qb - 4.0 * qa * qc;
-  if (!(disc >= 0.0) || dp == 0.0) return Solved<double>::failure(Status::out_of_range);
-  const double root = std::sqrt(disc);
-  const double y = qb >= 0.0 ? 2.0 * qc / (-qb - root) : (-qb + root) / (2.0 * qa);
-  const double u2 = dp * y;
-  if (!(u2 >= 0.0) || !(dp + w * u2 != 0.0) || ((dp + w * u2) > 0.0) != (dp > 0.0))
-    return Solved<double>::failure(Status::out_of_range);
-  const double relative = std::asinh(std::sqrt(u2));
-  // A compression (Ψ grows as s falls, c_s > 0) slows the state behind a C− shock (it moves
-  // against the family's direction).
-  const double direction = star.log() < outer.stretch.log() ? family : -family;
-  double phi = outer.rapidity + direction * relative;
-
-  // The lab frame: g(φ) = [p][τ] + [v][M] = 0 with τ = s/cosh φ, v = tanh φ, M = w s sinh φ.
-  const double phi0 = outer.rapidity;
-  const Hyperbolic outer_hyperbolic = hyperbolic(phi0);
-  const double ch0 = outer_hyperbolic.cosh;
-  const double tau0 = s0 / ch0, momentum0 = at_outer.enthalpy * s0 * outer_hyperbolic.sinh;
-  const double log_ratio = star.log() - outer.stretch.log();
-  for (int step = 0; step < 8; ++step) {
-    const Hyperbolic at_phi = hyperbolic(phi);
-    const double ch = at_phi.cosh, sh = at_phi.sinh;
-    // With d = (φ0 − φ)/2: cosh φ0 / cosh φ − 1 = 2 sinh(φ + d) sinh d / cosh φ, and
-    // sinh(φ − φ0) = −2 sinh d cosh d, each without cancellation.
-    const double sd = std::sinh(0.5 * (phi0 - phi)), cd = std::sqrt(1.0 + sd * sd);
-    const double cosh_ratio = std::log1p(2.0 * (sh * cd + ch * sd) * sd / ch);
-    const double dtau = tau0 * std::expm1(log_ratio + cosh_ratio);
-    const double dv = -2.0 * sd * cd / (ch0 * ch);
-    const double dm = w * s * sh - momentum0;
-    const double g = dp * dtau + dv * dm;
-    const double slope = -dp * s * sh / (ch * ch) + dm / (ch * ch) + dv * w * s * ch;
-    if (!(slope != 0.0) || !std::isfinite(g)) break;
-    const double delta = g / slope;
-    phi -= delta;
-    // Newton's next error is about δ² g''/(2 g'), with g''/g' of the order of 1/(the jump in
-    // rapidity): below round-off, no further step is needed (one, for a weak shock, whose
-    // closed-form start is off by a third-order term only).
-    if (delta * delta <= 4.0 * kEps * (1.0 + std::abs(phi)) * std::max(relative, 1e-300)) break;
-  }
-  if (!std::isfinite(phi)) return Solved<double>::failure(Status::not_converged);
-  return Solved<double>{phi, Status::ok};
-}
-
 Solved<double> curve_rapidity(const Material& m, CurveEnd& outer, TrialStretch& at, int family, bool* shock) {
   const Stretch s = Stretch::from_log(at.z);
   // The state on the integral curve; the wave is a shock where the characteristics of its

@@ -25,38 +25,6 @@ double wave_strength(const Material& m, const State& a, const State& b, int fami
 /// would run against the family's direction or faster than light (coarse fan steps).
 FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b, int family);
 
-/// The rapidity of the state at stretch `star` that a shock of family `family` connects to
-/// `outer`. The jump conditions hold in the lab frame (SPEC §1: m [τ] = −[v], m [M] = [p]);
-/// since a shock of an elastic material dissipates energy, the momentum condition alone is
-/// not Lorentz covariant, and the outer state's rest frame gives a slightly different curve
-/// unless the outer state is at rest in the lab (third order in the strength). So: first the
-/// rest-frame closed form, where the conditions with u = γv of the star give
-/// Δp s0 γ = s (Δp + w u²) (w = e + p at the star), a quadratic in Y = u²/Δp,
-/// s²w² Y² + (2 s² w − Δp s0²) Y + (s² − s0²) = 0, whose root of the sign of Δp is taken in
-/// its stable form (rapidities add along the line); then Newton steps on the lab-frame
-/// condition [p][τ] + [v][M] = 0, with [τ] and [v] free of cancellation, to round-off.
-Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch star, int family);
-
-/// What the jump conditions ask of a stretch: s, p and e + p (NaN until evaluated).
-struct JumpLaws {
-  double stretch = std::numeric_limits<double>::quiet_NaN();
-  double pressure = 0.0;
-  double enthalpy = 0.0;
-  /// Evaluates them once.
-  const JumpLaws& at(const Material& m, Stretch s) {
-    if (std::isnan(stretch)) {
-      stretch = s.value();
-      pressure = m.pressure(s);
-      enthalpy = m.enthalpy_density(s);
-    }
-    return *this;
-  }
-};
-
-/// hugoniot_rapidity with s, p and e + p of both stretches given.
-Solved<double> hugoniot_rapidity(const State& outer, const JumpLaws& at_outer, Stretch star, const JumpLaws& at_star,
-                                 int family);
-
 /// One end of a wave curve: its state, Ψ there, the characteristic speed (dX/dt) of the
 /// curve's family there, and p and e + p once a Hugoniot asks for them.
 struct CurveEnd {

@@ -78,6 +78,8 @@ constexpr double kDissipationPrecision = 1.0;
 /// as much as they (half as much cost the sprays of seven random scenes 1.2-3 times the
 /// time, for bounds 0.5-1.4 times these).
 constexpr double kDropletBalance = 1.0;
+/// The coarsest a spray may make the resolution of waves and droplets (see rebalance).
+constexpr double kCoarsestResolution = 0.005;
 constexpr double kResolutionStep = 1.1;
 /// A merge across fronts of the other family is tried in full only if its first-order cost
 /// is at most this multiple of what a merge may cost (see Tracker::merge_across).
@@ -395,12 +397,12 @@ class Tracker {
   /// error that does not fall with the tolerance, while resolving the waves around them to
   /// the tolerance costs ~1/tolerance² per crossing. At each droplet, while the waves have
   /// booked (merges and fan steps) less than kDropletBalance × what the droplets have, the
-  /// resolution of waves and droplets coarsens by kResolutionStep (no coarser than where the
-  /// front cap reaches its floor); once they have booked more, it refines by as much (no
-  /// finer than the tolerance). The waves' share of the bound then follows the droplets'.
+  /// resolution of waves and droplets coarsens by kResolutionStep (no coarser than
+  /// kCoarsestResolution); once they have booked more, it refines by as much (no finer than
+  /// the tolerance). The waves' share of the bound then follows the droplets'.
   void rebalance() {
     double r = error_merges_ + error_fans_ < kDropletBalance * error_droplets_
-                   ? std::min(kFrontsPerBody / kMinFrontsPerBody, kResolutionStep * resolution_)
+                   ? std::min(kCoarsestResolution, kResolutionStep * resolution_)
                    : resolution_ / kResolutionStep;
     r = std::max(r, scene_.solver.tolerance);
     if (r != resolution_) set_resolution(r);
