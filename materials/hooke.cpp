@@ -27,6 +27,7 @@
 #include <string_view>
 #include <vector>
 
+#include "rigidity/hyperbolic.hpp"
 #include "rigidity/material.hpp"
 #include "rigidity/parameters.hpp"
 #include "rigidity/registry.hpp"
@@ -71,37 +72,38 @@ class Hooke final : public Material {
 
   /// p = e/R − ρ00 (SPEC §2): as −ρ00 b² σ/(R (q + s)) near s = 1, and in far tension as the
   /// maximum tension plus a positive remainder, so that it never rounds below that limit.
-  [[nodiscard]] double pressure(Stretch s) const override {
-    const double t = s.log();
-    const double r = r_of(t);
-    if (t >= 1.0) return rest_density() * b_ * std::exp(-2.0 * t) / (r * (r + b_)) + max_tension();
-    return -rest_density() * b_ * b_ * two_sinh(t) / (r * (q_of(t) + std::exp(t)));
-  }
+  [[nodiscard]] double pressure(Stretch s) const override { return pressure_of(terms(s.log()), s.log()); }
 
   /// e = ρ00 (R − b²)/(1 − b²) (SPEC §2): as ρ00 (1 − σ/(q + s)) in compression, and in
   /// tension as (e + p) − p, so that e + p never rounds below 0.
   [[nodiscard]] double energy_density(Stretch s) const override {
-    const double t = s.log();
-    if (t >= 0.0) return tension_enthalpy(t) - pressure(s);
-    return rest_density() * (1.0 - two_sinh(t) / (q_of(t) + std::exp(t)));
+    if (s.log() >= 0.0) return enthalpy_density(s) - pressure(s);
+    const Terms k = terms(s.log());
+    return rest_density() * (1.0 - k.two_sinh / (k.q + k.s));
   }
 
   /// e + p = ρ00/(s² R): from e(1 + 1/R) − ρ00 with R² − b² = a²/s².
-  [[nodiscard]] double enthalpy_density(Stretch s) const override { return tension_enthalpy(s.log()); }
+  [[nodiscard]] double enthalpy_density(Stretch s) const override { return enthalpy_of(terms(s.log())); }
 
   /// c_s = b/R = b s/sqrt(b²s² + a²) (SPEC §2).
-  [[nodiscard]] double sound_speed(Stretch s) const override { return b_ / r_of(s.log()); }
+  [[nodiscard]] double sound_speed(Stretch s) const override { return b_ / terms(s.log()).r; }
+
+  /// p, e + p and c_s from one evaluation of the terms.
+  [[nodiscard]] LawValues laws_at(Stretch s) const override {
+    const Terms k = terms(s.log());
+    return {pressure_of(k, s.log()), enthalpy_of(k), b_ / k.r};
+  }
 
   /// W'' = ρ00 b²/(b²s² + a²)^{3/2}.
   [[nodiscard]] double stiffness(Stretch s) const override {
-    const double q = q_of(s.log());
+    const double q = terms(s.log()).q;
     return rest_density() * b_ * b_ / (q * q * q);
   }
 
   /// Ψ = asinh(b/a) − asinh(b s/a), as asinh(−b σ/(R + 1)).
   [[nodiscard]] double riemann_psi(Stretch s) const override {
-    const double t = s.log();
-    return std::asinh(-b_ * two_sinh(t) / (r_of(t) + 1.0));
+    const Terms k = terms(s.log());
+    return std::asinh(-b_ * k.two_sinh / (k.r + 1.0));
   }
 
   /// Inverse of p(s); reachable for −ρ00 b/(1 + b) < p < ρ00 b²/a².
@@ -168,14 +170,32 @@ class Hooke final : public Material {
   [[nodiscard]] bool linearly_degenerate() const override { return true; }
 
  private:
-  /// σ = s − 1/s = 2 sinh(ln s), exact near s = 1.
-  static double two_sinh(double t) { return 2.0 * std::sinh(t); }
-  /// R = sqrt(b² + a²/s²) (SPEC §2); finite for every representable s.
-  [[nodiscard]] double r_of(double t) const { return std::hypot(b_, a_ * std::exp(-t)); }
-  /// q = s R = sqrt(b² s² + a²).
-  [[nodiscard]] double q_of(double t) const { return std::hypot(b_ * std::exp(t), a_); }
-  /// e + p = ρ00/(s² R) for s ≥ 1.
-  [[nodiscard]] double tension_enthalpy(double t) const { return rest_density() * std::exp(-2.0 * t) / r_of(t); }
+  /// What the laws are written in, at t = ln s: s, 1/s, σ = s − 1/s = 2 sinh t (exact near
+  /// s = 1), R = sqrt(b² + a²/s²) and q = s R = sqrt(b² s² + a²). From one exponential
+  /// (rigidity::hyperbolic) and one square root; beyond |t| = 300, where a square could
+  /// overflow, each on its own with hypot.
+  struct Terms {
+    double s, inv_s, two_sinh, r, q;
+  };
+  [[nodiscard]] Terms terms(double t) const {
+    if (std::abs(t) < 300.0) {
+      // R² = 1 + a² (1/s² − 1) = 1 − a² σ/s: exactly 1 at s = 1 (c_s = V there), free of
+      // cancellation below s = e (far tension: b² + (a/s)², two positive terms).
+      const Hyperbolic h = hyperbolic(t);
+      const double a_over_s = a_ * h.em;
+      const double r = std::sqrt(t < 1.0 ? 1.0 - a_ * a_ * (2.0 * h.sinh) * h.em : b_ * b_ + a_over_s * a_over_s);
+      return {h.ep, h.em, 2.0 * h.sinh, r, h.ep * r};
+    }
+    return {std::exp(t), std::exp(-t), 2.0 * std::sinh(t), std::hypot(b_, a_ * std::exp(-t)),
+            std::hypot(b_ * std::exp(t), a_)};
+  }
+
+  [[nodiscard]] double pressure_of(const Terms& k, double t) const {
+    if (t >= 1.0) return rest_density() * b_ * k.inv_s * k.inv_s / (k.r * (k.r + b_)) + max_tension();
+    return -rest_density() * b_ * b_ * k.two_sinh / (k.r * (k.q + k.s));
+  }
+  /// e + p = ρ00/(s² R).
+  [[nodiscard]] double enthalpy_of(const Terms& k) const { return rest_density() * k.inv_s * k.inv_s / k.r; }
 
   double b_;        ///< V: shock speed relative to the unstrained material
   double a_;        ///< sqrt(1 − V²)

@@ -198,12 +198,13 @@ LagrangianSpeeds speeds_at(double s, double c, double ep, double em) {
 FaceState face_state(const Material& m, const State& st) {
   const double s = st.stretch.value();
   const Hyperbolic hy = hyperbolic(st.rapidity);
-  const LagrangianSpeeds speeds = speeds_at(s, m.sound_speed(st.stretch), hy.ep, hy.em);
+  const LawValues laws = m.laws_at(st.stretch);
+  const LagrangianSpeeds speeds = speeds_at(s, laws.sound_speed, hy.ep, hy.em);
   FaceState out;
   out.fastest = speeds.plus;
   out.slowest = speeds.minus;
-  out.u = Conserved{s / hy.cosh, m.enthalpy_density(st.stretch) * s * hy.sinh};
-  out.f = Flux{-std::tanh(st.rapidity), m.pressure(st.stretch)};
+  out.u = Conserved{s / hy.cosh, laws.enthalpy * s * hy.sinh};
+  out.f = Flux{-velocity_of(st.rapidity, hy), laws.pressure};
   return out;
 }
 }  // namespace

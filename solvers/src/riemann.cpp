@@ -882,10 +882,7 @@ Solved<double> shock_dissipation_rate(const Material& m, const State& left, cons
   const double s_l = left.stretch.value();
   const Hyperbolic at_l = hyperbolic(phi_l), at_r = hyperbolic(phi_r);
   const double ch_l = at_l.cosh, ch_r = at_r.cosh;
-  const auto velocity = [](double phi, const Hyperbolic& at) {
-    return std::abs(phi) < 300.0 ? at.sinh / at.cosh : std::tanh(phi);
-  };
-  const double v_l = velocity(phi_l, at_l), v_r = velocity(phi_r, at_r);
+  const double v_l = velocity_of(phi_l, at_l), v_r = velocity_of(phi_r, at_r);
   const double p_l = m.pressure(left.stretch), p_r = m.pressure(right.stretch);
   const double dp = p_r - p_l;
   // [v] and [τ] to full relative precision however weak the jump, with h = (φr − φl)/2:

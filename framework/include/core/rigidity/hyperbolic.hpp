@@ -1,5 +1,5 @@
 #pragma once
-/// sinh φ, cosh φ and e^±φ of a rapidity from one exponential.
+/// sinh φ, cosh φ, e^±φ and tanh φ of a rapidity from one exponential.
 ///
 /// Below |φ| = 1 from expm1, so that sinh φ keeps full relative precision near 0; above,
 /// from exp; beyond |φ| = 700, where e^φ overflows, from the library's sinh and cosh
@@ -35,6 +35,12 @@ struct Hyperbolic {
     h.cosh = std::cosh(phi);
   }
   return h;
+}
+
+/// tanh φ (the velocity of rapidity φ) from h = hyperbolic(φ); the library's beyond
+/// |φ| = 300, where sinh φ / cosh φ would be inf / inf.
+[[nodiscard]] inline double velocity_of(double phi, const Hyperbolic& h) {
+  return std::abs(phi) < 300.0 ? h.sinh / h.cosh : std::tanh(phi);
 }
 
 }  // namespace rigidity

@@ -32,6 +32,13 @@ struct StretchRange {
   [[nodiscard]] constexpr bool contains(Stretch s) const { return s.log() >= log_min && s.log() <= log_max; }
 };
 
+/// What a flux, a face state or a jump condition asks of one stretch together.
+struct LawValues {
+  double pressure = 0.0;
+  double enthalpy = 0.0;  ///< e + p
+  double sound_speed = 0.0;
+};
+
 class Material {
  public:
   explicit Material(double rest_density) : rest_density_(rest_density) {}
@@ -62,6 +69,11 @@ class Material {
   [[nodiscard]] virtual double stiffness(Stretch s) const;
   /// Ψ(s) = ∫_s^1 c_s(σ)/σ dσ: positive in compression, zero at s = 1.
   [[nodiscard]] virtual double riemann_psi(Stretch s) const = 0;
+  /// p, e + p and c_s at s, each exactly as its own function gives it; override where the
+  /// three share their work (the finite-volume face states ask for all three).
+  [[nodiscard]] virtual LawValues laws_at(Stretch s) const {
+    return {pressure(s), enthalpy_density(s), sound_speed(s)};
+  }
 
   // ---- inverses ---------------------------------------------------------------
   /// The stretch at which the pressure is p; out_of_range outside (max_tension, max_pressure).

@@ -34,7 +34,7 @@ namespace rigidity {
 /// The version of everything a plugin and the framework share (Material, MaterialInfo,
 /// ParameterSpec, ParameterValues, Stretch, Solved, NumericMaterial, PiecewiseChebyshev...):
 /// bump it whenever one of their layouts or virtual functions changes.
-inline constexpr int kPluginAbiVersion = 2;
+inline constexpr int kPluginAbiVersion = 3;
 
 using MaterialFactory = std::function<std::shared_ptr<const Material>(const ParameterValues&)>;
 
