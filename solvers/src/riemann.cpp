@@ -196,12 +196,23 @@ Outcome<double> shock_star_rapidity(const Material& m, const State& outer, Stret
   const double labels_outer = label_density(outer), momentum_outer = momentum_density(m, outer);
   // [v] = tanh φ* − tanh φ_outer = sinh(φ* − φ_outer)/(cosh φ* cosh φ_outer): exact where both
   // tanh round to ±1 (|φ| > 19).
-  const auto hugoniot = [&](double rapidity) {
+  // H and the size of its round-off there (its two products of jumps, each taken as a
+  // difference of O(1) values).
+  struct Residual {
+    double value, round_off;
+  };
+  const auto hugoniot_residual = [&](double rapidity) {
     const State st{rapidity, star};
     const double cosh_star = std::cosh(rapidity);
-    return std::sinh(rapidity - outer.rapidity) / cosh_star / cosh_outer * (momentum_density(m, st) - momentum_outer) +
-           (p_star - p_outer) * (star.value() / cosh_star - labels_outer);
+    const double dv = std::sinh(rapidity - outer.rapidity) / cosh_star / cosh_outer;
+    const double momentum_star = momentum_density(m, st);
+    const double scale = std::abs(dv) * (std::abs(momentum_star) + std::abs(momentum_outer)) +
+                         std::abs(p_star - p_outer) * (star.value() / cosh_star + labels_outer);
+    return Residual{
+        dv * (momentum_star - momentum_outer) + (p_star - p_outer) * (star.value() / cosh_star - labels_outer),
+        64.0 * std::numeric_limits<double>::epsilon() * (1.0 + std::abs(rapidity)) * scale};
   };
+  const auto hugoniot = [&](double rapidity) { return hugoniot_residual(rapidity).value; };
   // The star moves against the family's direction in a compression (a C− shock slows the left
   // state) and with it in an expansion: g(d) = H(φ_outer + direction d) grows with d ≥ 0.
   const double direction = star.log() < outer.stretch.log() ? family : -family;
@@ -214,13 +225,18 @@ Outcome<double> shock_star_rapidity(const Material& m, const State& outer, Stret
   const double at_outer = (p_star - p_outer) * (star.value() - outer.stretch.value());
   if (std::isnan(at_outer)) return failure();
   if (at_outer >= 0.0) return at(0.0);
-  // The rest-frame closed form and Newton steps on H (hugoniot_rapidity) settle almost every
-  // shock in one or two evaluations; where they do not, or land on the other family's side,
-  // the root is bracketed below.
+  // The rest-frame closed form and Newton steps on the lab-frame condition in its
+  // cancellation-free form (hugoniot_rapidity) settle almost every shock in one or two
+  // evaluations; the root is taken if H, the same condition written directly, vanishes there
+  // to its round-off. Where it does not, or the root lies on the other family's side, the
+  // root of H is bracketed below.
   const JumpLaws laws_outer{outer.stretch.value(), p_outer, m.enthalpy_density(outer.stretch)};
   const JumpLaws laws_star{star.value(), p_star, m.enthalpy_density(star)};
   const Solved<double> closed = hugoniot_rapidity(outer, laws_outer, star, laws_star, family);
-  if (closed.ok() && direction * (closed.value - outer.rapidity) >= 0.0) return succeeded<double>(closed.value);
+  if (closed.ok() && direction * (closed.value - outer.rapidity) >= 0.0) {
+    const Residual check = hugoniot_residual(closed.value);
+    if (std::abs(check.value) <= check.round_off) return succeeded<double>(closed.value);
+  }
   // The rarefaction curve's |ΔΨ| agrees with the shock's rapidity change to second order in the
   // strength: bracket tightly around it, so that Brent needs few steps. Where ΔΨ rounds away
   // (a star an ulp from the outer stretch), c_s |Δ ln s| gives the same scale.
