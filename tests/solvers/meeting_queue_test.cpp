@@ -32,6 +32,18 @@ class Twin {
     erase_reference(node);
     queue_.erase(node);
   }
+  /// What a crossing does: `from`'s meeting goes, `to` (which has none) gets one at t.
+  void move(int from, int to, double t) {
+    ASSERT_TRUE(queue_.contains(from));
+    ASSERT_FALSE(queue_.contains(to));
+    erase_reference(from);
+    const std::uint64_t seq = seq_++;
+    reference_.insert({t, seq, to});
+    where_[to] = {t, seq};
+    queue_.move(from, to, t, seq);
+  }
+  [[nodiscard]] bool has(int node) const { return where_.count(node) != 0; }
+  [[nodiscard]] int earliest_node() const { return std::get<2>(*reference_.begin()); }
   /// Pops the earliest meeting from both; false if the two disagree.
   bool pop_and_compare() {
     if (!same_top()) return false;
@@ -90,6 +102,17 @@ TEST(MeetingQueue, AgreesWithAnOrderedSetUnderTheChangesARunMakes) {
         q.set(node, now + ahead);
       } else if (r < 0.6) {
         q.erase(node);
+      } else if (r < 0.75 && q.size() > 0 && !q.has(node)) {
+        // The earliest meeting is a crossing: its entry goes to a node that meets nothing yet,
+        // at a time ahead of it (or, rarely, the same instant).
+        const double kind = unit(random);
+        now = q.earliest();
+        q.move(q.earliest_node(), node, now + (kind < 0.1 ? 0.0 : unit(random)));
+      } else if (r < 0.8 && q.size() > 1 && !q.has(node)) {
+        // Any meeting's entry moves, to an earlier or a later time.
+        int from = (node + 1) % nodes;
+        while (!q.has(from)) from = (from + 1) % nodes;
+        q.move(from, node, now + unit(random));
       } else {
         if (q.size() > 0) now = q.earliest();
         ASSERT_TRUE(q.pop_and_compare()) << nodes << " nodes, step " << step;
