@@ -90,8 +90,8 @@ std::string budget_stop_reason(const Scene& scene, Budget budget, double t) {
   std::vector<std::string> why;
   if (!traits.fanned.empty())
     why.push_back("the rarefaction fans of " + join(traits.fanned, " and ") +
-                  " are split into steps of solver.tolerance = " + readable(scene.solver.tolerance) +
-                  " in Psi, and every step that crosses a shock, a fan or an end makes new fronts");
+                  " are split into steps of at least 2 solver.tolerance = " + readable(2.0 * scene.solver.tolerance) +
+                  " in their Riemann invariant, and every step that reaches a contact or an end makes new fronts");
   if (traits.interfaces || traits.several_bodies || !traits.parting.empty())
     why.push_back(std::string("every reflection and transmission at ") +
                   (traits.interfaces ? "a material interface, " : "") + (traits.several_bodies ? "a contact, " : "") +
@@ -114,9 +114,10 @@ std::string budget_stop_reason(const Scene& scene, Budget budget, double t) {
   if (!traits.fanned.empty() || traits.interfaces || traits.several_bodies || !traits.parting.empty() || traits.pistons)
     advice.push_back("use solver.method: finite_volume, whose cost grows only linearly with time.end");
   if (budget == Budget::fronts) {
-    // A front costs about 150 bytes of memory (its node, its queue entry).
+    // A front costs about 250 bytes of memory (its node with the states it remembers, 208
+    // bytes; its queue entry and place in the queue).
     advice.push_back("raise solver.max_fronts (" + count(scene.solver.max_fronts) + " fronts take about " +
-                     readable(150.0 * static_cast<double>(scene.solver.max_fronts) / 1e6) + " MB)");
+                     readable(250.0 * static_cast<double>(scene.solver.max_fronts) / 1e6) + " MB)");
   } else {
     advice.push_back("raise solver.max_interactions if the run is worth the time");
   }
