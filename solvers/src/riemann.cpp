@@ -894,19 +894,12 @@ double characteristic_lab_speed(const Material& m, const State& state, int famil
 
 Solved<double> shock_dissipation_rate(const Material& m, const State& left, const State& right,
                                       double relative_precision) {
-  JumpLaws laws_l, laws_r;
-  return shock_dissipation_rate(m, left, laws_l.at(m, left.stretch), right, laws_r.at(m, right.stretch),
-                                relative_precision);
-}
-
-Solved<double> shock_dissipation_rate(const Material& m, const State& left, const JumpLaws& laws_l, const State& right,
-                                      const JumpLaws& laws_r, double relative_precision) {
   const double phi_l = left.rapidity, phi_r = right.rapidity;
-  const double s_l = laws_l.stretch;
+  const double s_l = left.stretch.value();
   const Hyperbolic at_l = hyperbolic(phi_l), at_r = hyperbolic(phi_r);
   const double ch_l = at_l.cosh, ch_r = at_r.cosh;
   const double v_l = velocity_of(phi_l, at_l), v_r = velocity_of(phi_r, at_r);
-  const double p_l = laws_l.pressure, p_r = laws_r.pressure;
+  const double p_l = m.pressure(left.stretch), p_r = m.pressure(right.stretch);
   const double dp = p_r - p_l;
   // [v] and [τ] to full relative precision however weak the jump, with h = (φr − φl)/2:
   //   [v] = sinh(φr − φl)/(cosh φl cosh φr) = 2 sinh h cosh h/(cosh φl cosh φr),
@@ -923,10 +916,10 @@ Solved<double> shock_dissipation_rate(const Material& m, const State& left, cons
   // small; a weaker one the same way when the digits that difference keeps are enough.
   const bool strong = std::abs(right.stretch.log() - left.stretch.log()) > 0.3;
   if (strong || relative_precision > 0.0) {
-    // energy_density of both states, from the laws and cosh φ already at hand.
-    const double s_r = laws_r.stretch;
-    const double E_l = laws_l.enthalpy * s_l * ch_l - p_l * s_l / ch_l;
-    const double E_r = laws_r.enthalpy * s_r * ch_r - p_r * s_r / ch_r;
+    // energy_density of both states, from the pressures and cosh φ already at hand.
+    const double s_r = right.stretch.value();
+    const double E_l = m.enthalpy_density(left.stretch) * s_l * ch_l - p_l * s_l / ch_l;
+    const double E_r = m.enthalpy_density(right.stretch) * s_r * ch_r - p_r * s_r / ch_r;
     const double direct = speed * (E_r - E_l) - (p_r * v_r - p_l * v_l);
     const double round_off =
         8.0 * std::numeric_limits<double>::epsilon() *

@@ -107,11 +107,9 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     // The star where the two wave curves meet, to round-off, or as soon as they miss each
     // other by less than star_mismatch_ (then booked on both fronts like a shock held off
     // its Hugoniot: a weak crossing often takes the two-rarefaction star as it is).
-    CrossingEnds ends{CurveEnd{left, psi_left, speeds_of(before.right, -1).lagrangian, before.right.laws},
-                      CurveEnd{right, psi_right, speeds_of(nb.right, +1).lagrangian, nb.right.laws}};
+    CrossingEnds ends{CurveEnd{left, psi_left, speeds_of(before.right, -1).lagrangian, {}},
+                      CurveEnd{right, psi_right, speeds_of(nb.right, +1).lagrangian, {}}};
     const Solved<SameMaterialStar> found = same_material_star(*m, ends, star, star_mismatch_);
-    before.right.laws = ends.left.laws;  // what a Hugoniot evaluated there, for the next
-    nb.right.laws = ends.right.laws;
     if (!found.ok()) return false;
     star = found.value.state;
     psi_of_star = m->riemann_psi(star.stretch);

@@ -93,8 +93,8 @@ enum class NodeKind : std::uint8_t { front, interface, left_end, right_end, ligh
 enum class Attach : std::uint8_t { free, boundary, body };
 
 /// A state of a material between two nodes, with what crossings ask of it remembered:
-/// Ψ of its stretch, the characteristic speeds of both families, and s, p and e + p (NaN
-/// until asked for; Tracker::psi_of, speeds_of and laws_of fill them). A region is written whole, so a new
+/// Ψ of its stretch and the characteristic speeds of both families (NaN until asked for;
+/// Tracker::psi_of and Tracker::speeds_of fill them). A region is written whole, so a new
 /// state never keeps the old one's values.
 struct Region {
   const Material* material = nullptr;
@@ -102,7 +102,6 @@ struct Region {
   mutable double psi = std::numeric_limits<double>::quiet_NaN();
   mutable FrontSpeeds speeds[2] = {{std::numeric_limits<double>::quiet_NaN(), 0.0},
                                    {std::numeric_limits<double>::quiet_NaN(), 0.0}};  ///< [0] C−, [1] C+
-  mutable JumpLaws laws;  ///< s, p and e + p (Tracker::laws_of)
 };
 
 /// A node of a piece's list: a front, a material interface or an end. Between
@@ -331,9 +330,6 @@ class Tracker {
     if (std::isnan(r.psi)) r.psi = memo_->psi(*r.material, r.state.stretch);
     return r.psi;
   }
-  /// s, p and e + p of a region's state (the jump conditions and a shock's dissipation),
-  /// remembered in the region.
-  const JumpLaws& laws_of(const Region& r) { return r.laws.at(*r.material, r.state.stretch); }
   /// The characteristic speeds of family `family` in a region's state, remembered in the region.
   const FrontSpeeds& speeds_of(const Region& r, int family) {
     FrontSpeeds& sp = r.speeds[family > 0 ? 1 : 0];

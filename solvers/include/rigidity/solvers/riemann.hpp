@@ -208,9 +208,5 @@ inline constexpr double kRepresentableLogStretch = 690.0;
 /// path cannot be found.
 [[nodiscard]] Solved<double> shock_dissipation_rate(const Material& material, const State& left, const State& right,
                                                     double relative_precision = 0.0);
-/// The same with s, p and e + p of both states given (a caller that has them).
-[[nodiscard]] Solved<double> shock_dissipation_rate(const Material& material, const State& left,
-                                                    const JumpLaws& laws_left, const State& right,
-                                                    const JumpLaws& laws_right, double relative_precision);
 
 }  // namespace rigidity
