@@ -114,10 +114,10 @@ std::string budget_stop_reason(const Scene& scene, Budget budget, double t) {
   if (!traits.fanned.empty() || traits.interfaces || traits.several_bodies || !traits.parting.empty() || traits.pistons)
     advice.push_back("use solver.method: finite_volume, whose cost grows only linearly with time.end");
   if (budget == Budget::fronts) {
-    // A front costs about 250 bytes of memory (its node with the states it remembers, 208
+    // A front costs about 210 bytes of memory (its node with what its region remembers, 184
     // bytes; its queue entry and place in the queue).
     advice.push_back("raise solver.max_fronts (" + count(scene.solver.max_fronts) + " fronts take about " +
-                     readable(250.0 * static_cast<double>(scene.solver.max_fronts) / 1e6) + " MB)");
+                     readable(210.0 * static_cast<double>(scene.solver.max_fronts) / 1e6) + " MB)");
   } else {
     advice.push_back("raise solver.max_interactions if the run is worth the time");
   }

@@ -251,8 +251,8 @@ Key solver_key() {
               .above(0.0)
               .defaults_to(1.0e-12),
           Key::integer("max_fronts",
-                       "characteristics: most fronts alive at once, about 250 bytes each (the default is about "
-                       "250 MB); beyond it the run stops cleanly with status `stopped` and the outputs up to then")
+                       "characteristics: most fronts alive at once, about 210 bytes each (the default is about "
+                       "210 MB); beyond it the run stops cleanly with status `stopped` and the outputs up to then")
               .at_least(1.0)
               .at_most(1.0e12)
               .defaults_to(1.0e6),
