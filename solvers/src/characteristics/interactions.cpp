@@ -214,7 +214,8 @@ bool Tracker::interact_in_place(int a, int b, double t) {
 /// A front of family `family` between the states `left` and `right` of material m, leaving
 /// (X, x) at time t. Jumps of a linearly degenerate material move at the characteristic
 /// speed; shocks and fan steps at the speed the label jump condition gives, so that the lab
-/// position of every label stays continuous across them.
+/// position of every label stays continuous across them. `known`: the front's speeds where
+/// the caller has them (a linearly degenerate crossing takes them from its neighbours).
 void Tracker::set_front(int id, int family, FrontKind kind, const Material& m, const State& left, const State& right,
                         double t, double X, double x, double off_hugoniot, double born, double strength,
                         const FrontSpeeds* known) {
