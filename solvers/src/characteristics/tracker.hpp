@@ -52,8 +52,9 @@ constexpr double kMergeFraction = 1.0;
 /// Live fronts per body beyond which merges may cost more (see Tracker::steer_merges):
 /// kFrontsPerBody / tolerance, at least kMinFrontsPerBody. At the cap the bound grows as
 /// 1/fronts and the work as fronts²: on 150 random scenes (tolerance 1e-3, t = 20) 0.3 in
-/// place of 0.5 took the slowest from 2.2 to 1.35 s and the sum from 25 to 18.5 s, with the
-/// median bound unchanged (those held at the cap: 1.7 times theirs).
+/// place of 0.5, with kDropletBalance 1 in place of 0.5, took the slowest from 2.2 to 1.35 s
+/// and the sum from 25 to 18.5 s, with the median bound unchanged (those held at the cap: 1.7
+/// times theirs).
 constexpr double kFrontsPerBody = 0.3;
 constexpr double kMinFrontsPerBody = 100.0;
 /// Pieces per body beyond which droplets grow (see Tracker::steer_droplets): kPiecesPerBody /
