@@ -2,8 +2,6 @@
 // Closed forms the front tracker is built on: the strength of a wave, the speed of a front
 // from the label jump condition, the wave curves and the exact star state of two states of
 // one material (the Hugoniot in closed form is the Riemann module's, hugoniot_rapidity).
-#include <cmath>
-#include <limits>
 #include <string>
 
 #include "rigidity/material.hpp"

@@ -77,7 +77,7 @@ constexpr double kDissipationPrecision = 1.0;
 /// A spray's waves may book up to this fraction of what its droplets book before their
 /// resolution stops coarsening, by kResolutionStep per droplet (see Tracker::rebalance):
 /// as much as they (half as much cost the sprays of seven random scenes 1.2-3 times the
-/// time, for bounds 0.5-1.4 times these).
+/// time, for bounds 0.5-1.3 times these).
 constexpr double kDropletBalance = 1.0;
 /// The coarsest a spray may make the resolution of waves and droplets (see rebalance).
 constexpr double kCoarsestResolution = 0.005;
