@@ -76,6 +76,14 @@ class ConstantSoundSpeed final : public Material {
 
   [[nodiscard]] double sound_speed(Stretch) const override { return v_; }
 
+  /// p and e + p from one q = s^{−k} − 1: p = ρ00 V² q/k, e + p = ρ00 (1 + q), the latter
+  /// from its own exponential where 1 + q would lose digits (q below −1/4, in tension).
+  [[nodiscard]] LawValues laws_at(Stretch s) const override {
+    const double q = std::expm1(-k_ * s.log());
+    const double enthalpy = q > -0.25 ? rest_density() * (1.0 + q) : enthalpy_density(s);
+    return {rest_density() * v_ * v_ / k_ * q, enthalpy, v_};
+  }
+
   /// W'' = ρ00 V² s^{−(k+1)}.
   [[nodiscard]] double stiffness(Stretch s) const override {
     return rest_density() * v_ * v_ * std::exp(-(k_ + 1.0) * s.log());

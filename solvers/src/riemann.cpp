@@ -814,7 +814,10 @@ Solved<double> hugoniot_rapidity(const State& outer, const JumpLaws& at_outer, S
   const double w = at_star.enthalpy;
   const double qa = s * s * w * w;
   const double qb = 2.0 * s * s * w - dp * s0 * s0;
-  const double qc = s0 * s0 * std::expm1(2.0 * (star.log() - outer.stretch.log()));
+  // s/s0 − 1, from which both the quadratic's constant term and [τ] below are written.
+  const double log_ratio = star.log() - outer.stretch.log();
+  const double ratio_m1 = std::expm1(log_ratio);
+  const double qc = s0 * s0 * ratio_m1 * (ratio_m1 + 2.0);
   const double disc = qb * qb - 4.0 * qa * qc;
   if (!(disc >= 0.0) || dp == 0.0) return Solved<double>::failure(Status::out_of_range);
   const double root = std::sqrt(disc);
@@ -833,16 +836,18 @@ Solved<double> hugoniot_rapidity(const State& outer, const JumpLaws& at_outer, S
   const Hyperbolic outer_hyperbolic = hyperbolic(phi0);
   const double ch0 = outer_hyperbolic.cosh;
   const double tau0 = s0 / ch0, momentum0 = at_outer.enthalpy * s0 * outer_hyperbolic.sinh;
-  const double log_ratio = star.log() - outer.stretch.log();
   bool settled = false;
   for (int step = 0; step < 8 && !settled; ++step) {
     const Hyperbolic at_phi = hyperbolic(phi);
     const double ch = at_phi.cosh, sh = at_phi.sinh;
-    // With d = (φ0 − φ)/2: cosh φ0 / cosh φ − 1 = 2 sinh(φ + d) sinh d / cosh φ, and
-    // sinh(φ − φ0) = −2 sinh d cosh d, each without cancellation.
-    const double sd = std::sinh(0.5 * (phi0 - phi)), cd = std::sqrt(1.0 + sd * sd);
-    const double cosh_ratio = std::log1p(2.0 * (sh * cd + ch * sd) * sd / ch);
-    const double dtau = tau0 * std::expm1(log_ratio + cosh_ratio);
+    // With d = (φ0 − φ)/2 (sinh d and cosh d from e^d − 1): cosh φ0 / cosh φ − 1 =
+    // 2 sinh(φ + d) sinh d / cosh φ =: x, sinh(φ − φ0) = −2 sinh d cosh d, and
+    // [τ] = τ0 ((s/s0)(1 + x) − 1) = τ0 (r + (1 + r) x) with r = s/s0 − 1, each without
+    // cancellation.
+    const Hyperbolic at_d = hyperbolic(0.5 * (phi0 - phi));
+    const double sd = at_d.sinh, cd = at_d.cosh;
+    const double cosh_excess = 2.0 * (sh * cd + ch * sd) * sd / ch;
+    const double dtau = tau0 * (ratio_m1 + (1.0 + ratio_m1) * cosh_excess);
     const double dv = -2.0 * sd * cd / (ch0 * ch);
     const double dm = w * s * sh - momentum0;
     const double g = dp * dtau + dv * dm;
@@ -899,17 +904,20 @@ Solved<double> shock_dissipation_rate(const Material& m, const State& left, cons
   const Hyperbolic at_l = hyperbolic(phi_l), at_r = hyperbolic(phi_r);
   const double ch_l = at_l.cosh, ch_r = at_r.cosh;
   const double v_l = velocity_of(phi_l, at_l), v_r = velocity_of(phi_r, at_r);
-  const double p_l = m.pressure(left.stretch), p_r = m.pressure(right.stretch);
+  const LawValues laws_l = m.laws_at(left.stretch), laws_r = m.laws_at(right.stretch);
+  const double p_l = laws_l.pressure, p_r = laws_r.pressure;
   const double dp = p_r - p_l;
   // [v] and [τ] to full relative precision however weak the jump, with h = (φr − φl)/2:
   //   [v] = sinh(φr − φl)/(cosh φl cosh φr) = 2 sinh h cosh h/(cosh φl cosh φr),
-  //   [τ] = τl (exp(ln(sr/sl) + ln(cosh φl / cosh φr)) − 1),
-  //   cosh φl / cosh φr − 1 = 2 sinh((φl + φr)/2) sinh((φl − φr)/2) / cosh φr
-  //                         = −2 sinh(φl + h) sinh h / cosh φr.
-  const double sh = std::sinh(0.5 * (phi_r - phi_l)), chh = std::sqrt(1.0 + sh * sh);
+  //   [τ] = τl ((sr/sl)(1 + x) − 1) = τl (r + (1 + r) x),  r = sr/sl − 1,
+  //   x = cosh φl / cosh φr − 1 = 2 sinh((φl + φr)/2) sinh((φl − φr)/2) / cosh φr
+  //                             = −2 sinh(φl + h) sinh h / cosh φr.
+  const Hyperbolic at_h = hyperbolic(0.5 * (phi_r - phi_l));
+  const double sh = at_h.sinh, chh = at_h.cosh;
   const double dv = 2.0 * sh * chh / (ch_l * ch_r);
-  const double cosh_ratio = std::log1p(-2.0 * (at_l.sinh * chh + ch_l * sh) * sh / ch_r);
-  const double dtau = s_l / ch_l * std::expm1(right.stretch.log() - left.stretch.log() + cosh_ratio);
+  const double cosh_excess = -2.0 * (at_l.sinh * chh + ch_l * sh) * sh / ch_r;
+  const double stretch_m1 = std::expm1(right.stretch.log() - left.stretch.log());
+  const double dtau = s_l / ch_l * (stretch_m1 + (1.0 + stretch_m1) * cosh_excess);
   if (dtau == 0.0) return {0.0, Status::ok};
   const double speed = -dv / dtau;  // label jump condition m [τ] = −[v]
   // A strong shock: the energy jump and the flux jump directly, their difference is not
@@ -918,8 +926,8 @@ Solved<double> shock_dissipation_rate(const Material& m, const State& left, cons
   if (strong || relative_precision > 0.0) {
     // energy_density of both states, from the pressures and cosh φ already at hand.
     const double s_r = right.stretch.value();
-    const double E_l = m.enthalpy_density(left.stretch) * s_l * ch_l - p_l * s_l / ch_l;
-    const double E_r = m.enthalpy_density(right.stretch) * s_r * ch_r - p_r * s_r / ch_r;
+    const double E_l = laws_l.enthalpy * s_l * ch_l - p_l * s_l / ch_l;
+    const double E_r = laws_r.enthalpy * s_r * ch_r - p_r * s_r / ch_r;
     const double direct = speed * (E_r - E_l) - (p_r * v_r - p_l * v_l);
     const double round_off =
         8.0 * std::numeric_limits<double>::epsilon() *

@@ -20,12 +20,12 @@ double wave_strength(const Material& m, const State& a, const State& b, int fami
 
 FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b, int family) {
   // cosh and sinh of φa from one exponential, and sinh(φb − φa) = 2 sinh h cosh h,
-  // sinh((φa + φb)/2) = sinh(φa + h) from those of h = (φb − φa)/2: four evaluations of the
-  // exponential where seven hyperbolic functions were.
+  // sinh((φa + φb)/2) = sinh(φa + h) from those of h = (φb − φa)/2 (another): three
+  // evaluations of the exponential where seven hyperbolic functions were.
   const Hyperbolic at_a = hyperbolic(a.rapidity);
   const double cosh_a = at_a.cosh, sinh_a = at_a.sinh;
-  const double half = 0.5 * (b.rapidity - a.rapidity);
-  const double sh = std::sinh(half), ch = std::sqrt(1.0 + sh * sh);
+  const Hyperbolic at_half = hyperbolic(0.5 * (b.rapidity - a.rapidity));
+  const double sh = at_half.sinh, ch = at_half.cosh;
   const double s_a = a.stretch.value();
   const double denominator =
       s_a * (std::expm1(b.stretch.log() - a.stretch.log()) * cosh_a - 2.0 * (sinh_a * ch + cosh_a * sh) * sh);

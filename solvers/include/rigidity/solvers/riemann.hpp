@@ -147,9 +147,10 @@ struct JumpLaws {
   /// Evaluates them once.
   const JumpLaws& at(const Material& m, Stretch s) {
     if (std::isnan(stretch)) {
+      const LawValues laws = m.laws_at(s);
       stretch = s.value();
-      pressure = m.pressure(s);
-      enthalpy = m.enthalpy_density(s);
+      pressure = laws.pressure;
+      enthalpy = laws.enthalpy;
     }
     return *this;
   }
