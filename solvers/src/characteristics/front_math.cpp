@@ -40,15 +40,19 @@ FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b,
   return FrontSpeeds{speed, lab};
 }
 
-Solved<double> curve_rapidity(const Material& m, CurveEnd& outer, TrialStretch& at, int family, bool* shock) {
+Solved<double> curve_rapidity(const Material& m, CurveEnd& outer, TrialStretch& at, int family, bool* shock,
+                              FrontSpeeds* fan_speeds) {
   const Stretch s = Stretch::from_log(at.z);
   // The state on the integral curve; the wave is a shock where the characteristics of its
   // family converge across it (as wave_is_shock decides, with the outer speed given).
   const double on_curve = outer.state.rapidity + family * (at.psi - outer.psi);
   bool converging = false;
+  if (fan_speeds != nullptr) fan_speeds->lagrangian = std::numeric_limits<double>::quiet_NaN();
   if (!m.linearly_degenerate() && s != outer.state.stretch) {
-    const double star_speed = characteristic_speeds(at.sound_speed, on_curve, at.stretch, family).lagrangian;
+    const FrontSpeeds star_speeds = characteristic_speeds(at.sound_speed, on_curve, at.stretch, family);
+    const double star_speed = star_speeds.lagrangian;
     converging = family < 0 ? !(outer.speed < star_speed) : !(star_speed < outer.speed);
+    if (!converging && fan_speeds != nullptr) *fan_speeds = star_speeds;
   }
   if (shock != nullptr) *shock = converging;
   if (converging) {
@@ -66,8 +70,8 @@ Solved<SameMaterialStar> same_material_star(const Material& m, CrossingEnds& end
     const Stretch s = Stretch::from_log(z);
     TrialStretch at{z, s.value(), m.riemann_psi(s), m.sound_speed(s), {}};
     sound_speed = at.sound_speed;
-    const Solved<double> a = curve_rapidity(m, ends.left, at, -1, &star.shock[0]);
-    const Solved<double> b = curve_rapidity(m, ends.right, at, +1, &star.shock[1]);
+    const Solved<double> a = curve_rapidity(m, ends.left, at, -1, &star.shock[0], &star.speeds[0]);
+    const Solved<double> b = curve_rapidity(m, ends.right, at, +1, &star.shock[1], &star.speeds[1]);
     if (!a.ok() || !b.ok()) return false;
     g = a.value - b.value;
     star.state = State{0.5 * (a.value + b.value), Stretch::from_log(z)};

@@ -2,6 +2,7 @@
 // Closed forms the front tracker is built on: the strength of a wave, the speed of a front
 // from the label jump condition, the wave curves and the exact star state of two states of
 // one material (the Hugoniot in closed form is the Riemann module's, hugoniot_rapidity).
+#include <limits>
 #include <string>
 
 #include "rigidity/material.hpp"
@@ -47,8 +48,10 @@ struct TrialStretch {
 /// family's invariant carried across: φ = φ_outer + family (Ψ − Ψ_outer)). Both curves of a
 /// crossing are asked at the same trial stretch, and a root find along one curve asks at
 /// the same outer state, so each evaluates its material there once. `shock`, if given, says
-/// which of the two it was.
-Solved<double> curve_rapidity(const Material& m, CurveEnd& outer, TrialStretch& at, int family, bool* shock = nullptr);
+/// which of the two it was; `fan_speeds`, if given, receives the characteristic speeds of the
+/// family at the state on the integral curve where the wave is a fan step (NaN otherwise).
+Solved<double> curve_rapidity(const Material& m, CurveEnd& outer, TrialStretch& at, int family, bool* shock = nullptr,
+                              FrontSpeeds* fan_speeds = nullptr);
 
 /// The star state of two states of one material, with what its two waves are: [0] the C−
 /// wave (from `left`), [1] the C+ wave (from `right`). `off` is how far the star's rapidity
@@ -59,6 +62,11 @@ struct SameMaterialStar {
   bool shock[2] = {false, false};
   double off[2] = {0.0, 0.0};
   bool converged = false;
+  /// The star's characteristic speeds of each family where its wave is a fan step: those of
+  /// the last trial's state on that curve (NaN otherwise). Converged, that state is the
+  /// star's to round-off.
+  FrontSpeeds speeds[2] = {{std::numeric_limits<double>::quiet_NaN(), 0.0},
+                           {std::numeric_limits<double>::quiet_NaN(), 0.0}};
 };
 
 /// Two states of one material with what the curves through them need: Ψ, and the

@@ -97,6 +97,8 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   FrontKind kinds[2] = {FrontKind::contact, FrontKind::contact};
   double off_curve[2] = {0.0, 0.0};
   bool held_back = false;  // the C− wave, weaker than the threshold, is not emitted
+  bool converged_star = false;
+  FrontSpeeds star_speeds[2];
   // J− across the C− front, J+ across the C+ front (for a linearly degenerate material,
   // those the fronts brought in, passed on).
   double strength_minus = std::abs(j_minus - (left.rapidity - psi_left));
@@ -112,6 +114,9 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     const Solved<SameMaterialStar> found = same_material_star(*m, ends, star, star_mismatch_);
     if (!found.ok()) return false;
     star = found.value.state;
+    converged_star = found.value.converged;
+    star_speeds[0] = found.value.speeds[0];
+    star_speeds[1] = found.value.speeds[1];
     psi_of_star = m->riemann_psi(star.stretch);
     bool shock[2] = {found.value.shock[0], found.value.shock[1]};
     for (int k = 0; k < 2; ++k) off_curve[k] = shock[k] || !found.value.converged ? found.value.off[k] : 0.0;
@@ -193,6 +198,10 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   if (degenerate) {
     star_region.speeds[0] = speeds_of(before.right, -1);
     star_region.speeds[1] = speeds_of(nb.right, +1);
+  } else if (converged_star) {
+    // A fan step's curve was asked for its speeds at the star (to round-off) already.
+    star_region.speeds[0] = star_speeds[0];
+    star_region.speeds[1] = star_speeds[1];
   }
   set_front(a, -1, kinds[0], *m, left, star, t, X, x, off_curve[0], born[0], strength_minus,
             degenerate ? &star_region.speeds[0] : nullptr);
