@@ -897,27 +897,44 @@ double characteristic_lab_speed(const Material& m, const State& state, int famil
   return characteristic_speeds(m, state, family).lab;
 }
 
+LabelJump label_jump(const State& a, const State& b) {
+  // cosh and sinh of φa from one exponential, those of h from another, and
+  // sinh((φa + φb)/2) = sinh(φa + h) from both: three evaluations of the exponential
+  // where seven hyperbolic functions would be.
+  LabelJump jump;
+  jump.left = hyperbolic(a.rapidity);
+  const Hyperbolic half = hyperbolic(0.5 * (b.rapidity - a.rapidity));
+  jump.sinh_half = half.sinh;
+  jump.cosh_half = half.cosh;
+  jump.scaled_v = 2.0 * half.sinh * half.cosh;
+  const double r = std::expm1(b.stretch.log() - a.stretch.log());
+  jump.stretch_ratio_m1 = r;
+  jump.left_stretch = a.stretch.value();
+  jump.scaled_tau = jump.left_stretch *
+                    (r * jump.left.cosh - 2.0 * (jump.left.sinh * half.cosh + jump.left.cosh * half.sinh) * half.sinh);
+  return jump;
+}
+
 Solved<double> shock_dissipation_rate(const Material& m, const State& left, const State& right,
                                       double relative_precision) {
+  return shock_dissipation_rate(m, left, JumpLaws{}, right, JumpLaws{}, label_jump(left, right), relative_precision);
+}
+
+Solved<double> shock_dissipation_rate(const Material& m, const State& left, JumpLaws at_left, const State& right,
+                                      JumpLaws at_right, const LabelJump& jump, double relative_precision) {
   const double phi_l = left.rapidity, phi_r = right.rapidity;
-  const double s_l = left.stretch.value();
-  const Hyperbolic at_l = hyperbolic(phi_l), at_r = hyperbolic(phi_r);
+  const double s_l = jump.left_stretch;
+  const Hyperbolic& at_l = jump.left;
+  const Hyperbolic at_r = hyperbolic(phi_r);
   const double ch_l = at_l.cosh, ch_r = at_r.cosh;
   const double v_l = velocity_of(phi_l, at_l), v_r = velocity_of(phi_r, at_r);
-  const LawValues laws_l = m.laws_at(left.stretch), laws_r = m.laws_at(right.stretch);
-  const double p_l = laws_l.pressure, p_r = laws_r.pressure;
+  at_left.at(m, left.stretch);
+  at_right.at(m, right.stretch);
+  const double p_l = at_left.pressure, p_r = at_right.pressure;
   const double dp = p_r - p_l;
-  // [v] and [τ] to full relative precision however weak the jump, with h = (φr − φl)/2:
-  //   [v] = sinh(φr − φl)/(cosh φl cosh φr) = 2 sinh h cosh h/(cosh φl cosh φr),
-  //   [τ] = τl ((sr/sl)(1 + x) − 1) = τl (r + (1 + r) x),  r = sr/sl − 1,
-  //   x = cosh φl / cosh φr − 1 = 2 sinh((φl + φr)/2) sinh((φl − φr)/2) / cosh φr
-  //                             = −2 sinh(φl + h) sinh h / cosh φr.
-  const Hyperbolic at_h = hyperbolic(0.5 * (phi_r - phi_l));
-  const double sh = at_h.sinh, chh = at_h.cosh;
-  const double dv = 2.0 * sh * chh / (ch_l * ch_r);
-  const double cosh_excess = -2.0 * (at_l.sinh * chh + ch_l * sh) * sh / ch_r;
-  const double stretch_m1 = std::expm1(right.stretch.log() - left.stretch.log());
-  const double dtau = s_l / ch_l * (stretch_m1 + (1.0 + stretch_m1) * cosh_excess);
+  // [v] and [τ] to full relative precision however weak the jump (see LabelJump).
+  const double dv = jump.scaled_v / (ch_l * ch_r);
+  const double dtau = jump.scaled_tau / (ch_l * ch_r);
   if (dtau == 0.0) return {0.0, Status::ok};
   const double speed = -dv / dtau;  // label jump condition m [τ] = −[v]
   // A strong shock: the energy jump and the flux jump directly, their difference is not
@@ -925,9 +942,9 @@ Solved<double> shock_dissipation_rate(const Material& m, const State& left, cons
   const bool strong = std::abs(right.stretch.log() - left.stretch.log()) > 0.3;
   if (strong || relative_precision > 0.0) {
     // energy_density of both states, from the pressures and cosh φ already at hand.
-    const double s_r = right.stretch.value();
-    const double E_l = laws_l.enthalpy * s_l * ch_l - p_l * s_l / ch_l;
-    const double E_r = laws_r.enthalpy * s_r * ch_r - p_r * s_r / ch_r;
+    const double s_r = s_l * (1.0 + jump.stretch_ratio_m1);
+    const double E_l = at_left.enthalpy * s_l * ch_l - p_l * s_l / ch_l;
+    const double E_r = at_right.enthalpy * s_r * ch_r - p_r * s_r / ch_r;
     const double direct = speed * (E_r - E_l) - (p_r * v_r - p_l * v_l);
     const double round_off =
         8.0 * std::numeric_limits<double>::epsilon() *

@@ -19,21 +19,15 @@ double wave_strength(const Material& m, const State& a, const State& b, int fami
 }
 
 FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b, int family) {
-  // cosh and sinh of φa from one exponential, and sinh(φb − φa) = 2 sinh h cosh h,
-  // sinh((φa + φb)/2) = sinh(φa + h) from those of h = (φb − φa)/2 (another): three
-  // evaluations of the exponential where seven hyperbolic functions were.
-  const Hyperbolic at_a = hyperbolic(a.rapidity);
-  const double cosh_a = at_a.cosh, sinh_a = at_a.sinh;
-  const Hyperbolic at_half = hyperbolic(0.5 * (b.rapidity - a.rapidity));
-  const double sh = at_half.sinh, ch = at_half.cosh;
-  const double s_a = a.stretch.value();
-  const double denominator =
-      s_a * (std::expm1(b.stretch.log() - a.stretch.log()) * cosh_a - 2.0 * (sinh_a * ch + cosh_a * sh) * sh);
-  const double speed = -2.0 * sh * ch / denominator;
-  const double lab = (sinh_a + speed * s_a) / cosh_a;
+  return label_jump_speeds(m, a, b, family, label_jump(a, b));
+}
+
+FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b, int family, const LabelJump& jump) {
+  const double speed = jump.speed();
+  const double lab = (jump.left.sinh + speed * jump.left_stretch) / jump.left.cosh;
   // A coarse step (or a jump held off its curve) can give a speed against its family's
   // direction or beyond light: it then moves at the mean characteristic speed instead.
-  if (!std::isfinite(speed) || denominator == 0.0 || !(family * speed > 0.0) || !(std::abs(lab) < 1.0)) {
+  if (!std::isfinite(speed) || jump.scaled_tau == 0.0 || !(family * speed > 0.0) || !(std::abs(lab) < 1.0)) {
     const FrontSpeeds sa = characteristic_speeds(m, a, family), sb = characteristic_speeds(m, b, family);
     return FrontSpeeds{0.5 * (sa.lagrangian + sb.lagrangian), 0.5 * (sa.lab + sb.lab)};
   }
@@ -75,6 +69,7 @@ Solved<SameMaterialStar> same_material_star(const Material& m, CrossingEnds& end
     if (!a.ok() || !b.ok()) return false;
     g = a.value - b.value;
     star.state = State{0.5 * (a.value + b.value), Stretch::from_log(z)};
+    star.laws = at.laws;
     star.off[0] = star.off[1] = 0.5 * std::abs(g);
     return std::isfinite(g);
   };

@@ -23,6 +23,8 @@ double wave_strength(const Material& m, const State& a, const State& b, int fami
 /// speed of family `family` where the jump is too small to define it, or where that speed
 /// would run against the family's direction or faster than light (coarse fan steps).
 FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b, int family);
+/// label_jump_speeds with the label jump between a and b at hand.
+FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b, int family, const LabelJump& jump);
 
 /// One end of a wave curve: its state, Ψ there, the characteristic speed (dX/dt) of the
 /// curve's family there, and p and e + p once a Hugoniot asks for them.
@@ -67,6 +69,8 @@ struct SameMaterialStar {
   /// star's to round-off.
   FrontSpeeds speeds[2] = {{std::numeric_limits<double>::quiet_NaN(), 0.0},
                            {std::numeric_limits<double>::quiet_NaN(), 0.0}};
+  /// p and e + p at the star's stretch, where a Hugoniot asked for them (NaN stretch otherwise).
+  JumpLaws laws;
 };
 
 /// Two states of one material with what the curves through them need: Ψ, and the

@@ -99,6 +99,7 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   bool held_back = false;  // the C− wave, weaker than the threshold, is not emitted
   bool converged_star = false;
   FrontSpeeds star_speeds[2];
+  JumpLaws outer_laws[2], star_laws;  // p and e + p of left, right and the star, where evaluated
   // J− across the C− front, J+ across the C+ front (for a linearly degenerate material,
   // those the fronts brought in, passed on).
   double strength_minus = std::abs(j_minus - (left.rapidity - psi_left));
@@ -117,6 +118,9 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     converged_star = found.value.converged;
     star_speeds[0] = found.value.speeds[0];
     star_speeds[1] = found.value.speeds[1];
+    outer_laws[0] = ends.left.laws;
+    outer_laws[1] = ends.right.laws;
+    star_laws = found.value.laws;
     psi_of_star = m->riemann_psi(star.stretch);
     bool shock[2] = {found.value.shock[0], found.value.shock[1]};
     for (int k = 0; k < 2; ++k) off_curve[k] = shock[k] || !found.value.converged ? found.value.off[k] : 0.0;
@@ -203,10 +207,13 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     star_region.speeds[0] = star_speeds[0];
     star_region.speeds[1] = star_speeds[1];
   }
+  // The laws at the outer states and the star, where the crossing's wave curves asked for them.
+  const JumpLaws laws_minus[2] = {outer_laws[0], star_laws};
+  const JumpLaws laws_plus[2] = {star_laws, outer_laws[1]};
   set_front(a, -1, kinds[0], *m, left, star, t, X, x, off_curve[0], born[0], strength_minus,
-            degenerate ? &star_region.speeds[0] : nullptr);
+            degenerate ? &star_region.speeds[0] : nullptr, laws_minus);
   set_front(b, +1, kinds[1], *m, star, right, t, X, x, off_curve[1], born[1], strength_plus,
-            degenerate ? &star_region.speeds[1] : nullptr);
+            degenerate ? &star_region.speeds[1] : nullptr, laws_plus);
   na.right = star_region;
   schedule_meet(na.prev);
   schedule_meets(a, b);
@@ -225,14 +232,29 @@ bool Tracker::interact_in_place(int a, int b, double t) {
 /// speed; shocks and fan steps at the speed the label jump condition gives, so that the lab
 /// position of every label stays continuous across them. `known`: the front's speeds where
 /// the caller has them (a linearly degenerate crossing takes them from its neighbours).
+/// A shock's dissipation is worked out here, from the label jump its speeds come from, and
+/// `laws` (p and e + p of left and right) where the caller has them.
 void Tracker::set_front(int id, int family, FrontKind kind, const Material& m, const State& left, const State& right,
                         double t, double X, double x, double off_hugoniot, double born, double strength,
-                        const FrontSpeeds* known) {
+                        const FrontSpeeds* known, const JumpLaws* laws) {
   Node& n = nodes_[id];
   n.strength = strength;
-  const FrontSpeeds speeds = known != nullptr             ? *known
-                             : kind == FrontKind::contact ? memo_->speeds(m, right, family)
-                                                          : label_jump_speeds(m, left, right, family);
+  n.dissipation = std::numeric_limits<double>::quiet_NaN();
+  FrontSpeeds speeds;
+  if (known != nullptr) {
+    speeds = *known;
+  } else if (kind == FrontKind::contact) {
+    speeds = memo_->speeds(m, right, family);
+  } else {
+    const LabelJump jump = label_jump(left, right);
+    speeds = label_jump_speeds(m, left, right, family, jump);
+    if (kind == FrontKind::shock) {
+      const Solved<double> rate =
+          shock_dissipation_rate(m, left, laws != nullptr ? laws[0] : JumpLaws{}, right,
+                                 laws != nullptr ? laws[1] : JumpLaws{}, jump, dissipation_precision_);
+      if (rate.ok()) n.dissipation = rate.value;
+    }
+  }
   n.born = born;
   n.family = family;
   n.front_kind = kind;

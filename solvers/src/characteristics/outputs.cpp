@@ -25,9 +25,12 @@ void Tracker::account_front_end(int id, double t) {
   if (left.material == nullptr || right.material == nullptr) return;
   // Energy removed per unit time at a front moving at m = dX/dt: m[E] − [F], with E the
   // energy and F = p v its flux per unit label (SPEC §1), computed from the jump itself
-  // (cubic in a weak shock's strength, where the difference of O(1) energies would cancel).
+  // (cubic in a weak shock's strength, where the difference of O(1) energies would cancel):
+  // by set_front for the states it set, else here.
   const Solved<double> from_jump =
-      shock_dissipation_rate(*right.material, left.state, right.state, dissipation_precision_);
+      !std::isnan(n.dissipation)
+          ? Solved<double>{n.dissipation, Status::ok}
+          : shock_dissipation_rate(*right.material, left.state, right.state, dissipation_precision_);
   double rate = from_jump.value;
   if (!from_jump.ok()) {
     const double jump_E = energy_density(*right.material, right.state) - energy_density(*left.material, left.state);

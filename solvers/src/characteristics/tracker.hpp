@@ -126,6 +126,9 @@ struct Node {
   /// (its strength times its speed, the L1 error it adds per unit time), since when, and
   /// the most it can add (strength times the natural length it could sweep).
   double defect_rate = 0.0, defect_since = 0.0, defect_cap = 0.0;
+  /// Shocks: the energy removed per unit time, from the states set with the front (NaN: not
+  /// known, account_front_end computes it from the regions).
+  double dissipation = std::numeric_limits<double>::quiet_NaN();
 
   [[nodiscard]] double X_at(double t) const { return X0 + dXdt * (t - t0); }
   [[nodiscard]] double x_at(double t) const { return x0 + dxdt * (t - t0); }
@@ -301,7 +304,7 @@ class Tracker {
   double merge_cost(int p, int q, double t, double* X_merged) const;
   void set_front(int id, int family, FrontKind kind, const Material& m, const State& left, const State& right, double t,
                  double X, double x, double off_hugoniot, double born, double strength,
-                 const FrontSpeeds* known = nullptr);
+                 const FrontSpeeds* known = nullptr, const JumpLaws* laws = nullptr);
   void resolve_group(std::vector<int>& group, double t);
   void wave(const Material& m, const State& outer, const State& star, int family, WaveStates& w);
   void emit_fronts(const Material& m, const WaveStates& w, int family, int piece, double t, double X, double x,

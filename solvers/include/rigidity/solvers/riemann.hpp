@@ -24,6 +24,7 @@
 #include <limits>
 #include <string_view>
 
+#include "rigidity/hyperbolic.hpp"
 #include "rigidity/material.hpp"
 #include "rigidity/status.hpp"
 #include "rigidity/units.hpp"
@@ -195,6 +196,24 @@ inline constexpr double kRepresentableLogStretch = 690.0;
 /// A shock between an outer state and a star state (same material), family -1 or +1.
 [[nodiscard]] FrontSpeeds shock_speeds(const Material& material, const State& outer, const State& star, int family);
 
+/// A front between states a (left) and b (right) of one material, as its label jump
+/// condition m [τ] = −[v] (τ = s/γ) sees it, written without cancellation however weak:
+/// with h = (φb − φa)/2 and r = sb/sa − 1,
+///   [v] cosh φa cosh φb = sinh(φb − φa) = 2 sinh h cosh h,
+///   [τ] cosh φa cosh φb = sa (r cosh φa − 2 sinh(φa + h) sinh h).
+struct LabelJump {
+  Hyperbolic left;                ///< of φa
+  double left_stretch = 1.0;      ///< sa
+  double stretch_ratio_m1 = 0.0;  ///< r = sb/sa − 1
+  double sinh_half = 0.0;         ///< sinh h
+  double cosh_half = 1.0;         ///< cosh h
+  double scaled_v = 0.0;          ///< [v] cosh φa cosh φb
+  double scaled_tau = 0.0;        ///< [τ] cosh φa cosh φb
+  /// m = −[v]/[τ] (infinite or NaN where [τ] vanishes).
+  [[nodiscard]] double speed() const { return -scaled_v / scaled_tau; }
+};
+[[nodiscard]] LabelJump label_jump(const State& a, const State& b);
+
 /// The energy a shock removes per unit time and area, D = m [E] − [p v] (SPEC §1), between its
 /// left and right states (one material, joined by the label and momentum jump conditions; m
 /// from the label condition). D is cubic in the strength of a weak shock while [E] and [p v]
@@ -208,6 +227,11 @@ inline constexpr double kRepresentableLogStretch = 690.0;
 /// only the digits its books need, at a fraction of the cost. Fails only if a stretch on the
 /// path cannot be found.
 [[nodiscard]] Solved<double> shock_dissipation_rate(const Material& material, const State& left, const State& right,
+                                                    double relative_precision = 0.0);
+/// shock_dissipation_rate with what a caller has at hand: p and e + p of either state (NaN
+/// stretch: evaluated here) and the label jump between them.
+[[nodiscard]] Solved<double> shock_dissipation_rate(const Material& material, const State& left, JumpLaws at_left,
+                                                    const State& right, JumpLaws at_right, const LabelJump& jump,
                                                     double relative_precision = 0.0);
 
 }  // namespace rigidity
