@@ -320,8 +320,7 @@ double Tracker::fan_error(int id, double t) const {
   const Material& m = *right.material;
   const double strength = std::abs(wave_strength(m, left.state, right.state, n.family));
   const double spread =
-      std::abs(characteristic_speed(m, left.state, n.family) - characteristic_speed(m, right.state, n.family)) *
-      (t - n.born);
+      std::abs(speeds_of(left, n.family).lagrangian - speeds_of(right, n.family).lagrangian) * (t - n.born);
   // A jump of σ in the middle of a ramp of width w misses it by two triangles, σ w/4 in
   // |δφ| + |δΨ| (σ/2 each, the other invariant being constant across a simple wave). The
   // ramp is no wider than the room between its neighbours: a staircase of steps stands for

@@ -50,8 +50,7 @@ Solved<double> curve_rapidity(const Material& m, CurveEnd& outer, TrialStretch& 
   }
   if (shock != nullptr) *shock = converging;
   if (converging) {
-    if (std::isnan(at.laws.stretch)) at.laws = JumpLaws{at.stretch, m.pressure(s), m.enthalpy_density(s)};
-    return hugoniot_rapidity(outer.state, outer.laws.at(m, outer.state.stretch), s, at.laws, family);
+    return hugoniot_rapidity(outer.state, outer.laws.at(m, outer.state.stretch), s, at.laws.at(m, s), family);
   }
   return Solved<double>{on_curve, Status::ok};
 }

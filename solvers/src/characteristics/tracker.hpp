@@ -335,7 +335,7 @@ class Tracker {
     return r.psi;
   }
   /// The characteristic speeds of family `family` in a region's state, remembered in the region.
-  const FrontSpeeds& speeds_of(const Region& r, int family) {
+  const FrontSpeeds& speeds_of(const Region& r, int family) const {
     FrontSpeeds& sp = r.speeds[family > 0 ? 1 : 0];
     if (std::isnan(sp.lagrangian)) sp = characteristic_speeds(*r.material, r.state, family);
     return sp;
