@@ -257,16 +257,19 @@ class Tracker {
 
   // ---- events -----------------------------------------------------------------------
   /// A rare event: into a binary heap whose superseded entries (an end that moved again
-  /// before its gap closed) are dropped when they reach the top, or all at once when they
-  /// outnumber the pieces, so the heap stays as small as the scene (the cleaning is paid
-  /// for by the pushes that made it necessary).
+  /// before its gap closed) are dropped when they reach the top, or all at once when the
+  /// heap has grown to twice what the last cleaning left (and beyond the pieces), so the
+  /// heap stays as small as the scene and each cleaning is paid for by the pushes that made
+  /// it necessary (a scene that starts with a thousand Riemann problems at t = 0 does not
+  /// clean its heap at every push).
   void push(double t, EventType type, int a, int b, std::uint32_t va, std::uint32_t vb) {
     queue_.push_back(Event{t, seq_++, type, a, b, va, vb});
     std::push_heap(queue_.begin(), queue_.end(), EventLater{});
-    if (queue_.size() > 2 * pieces_.size() + 64) {
+    if (queue_.size() > 2 * std::max(pieces_.size(), queue_after_cleaning_) + 64) {
       queue_.erase(std::remove_if(queue_.begin(), queue_.end(), [this](const Event& e) { return !valid(e); }),
                    queue_.end());
       std::make_heap(queue_.begin(), queue_.end(), EventLater{});
+      queue_after_cleaning_ = queue_.size();
     }
   }
   void pop_event() {
@@ -497,8 +500,9 @@ class Tracker {
   std::vector<LightPiece> light_;  ///< by piece (store kNone: an ordinary piece)
   bool light_made_ = false;
   Wall walls_[2];
-  std::vector<Event> queue_;  ///< rare events (a heap, EventLater): gaps, pistons, t = 0
-  MeetingQueue meetings_;     ///< fronts meeting fronts, ends, interfaces
+  std::vector<Event> queue_;              ///< rare events (a heap, EventLater): gaps, pistons, t = 0
+  std::size_t queue_after_cleaning_ = 0;  ///< entries left by the last cleaning of queue_
+  MeetingQueue meetings_;                 ///< fronts meeting fronts, ends, interfaces
   std::uint64_t seq_ = 0;
   long live_fronts_ = 0;
 
