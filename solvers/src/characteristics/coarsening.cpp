@@ -299,14 +299,17 @@ void Tracker::merge_nearby(int id, double t) {
     int n = id;
     for (int steps = 0; steps < kMergeReach; ++steps) {
       n = direction > 0 ? nodes_[n].next : nodes_[n].prev;
-      if (n == kNone || nodes_[n].kind != NodeKind::front || nodes_[n].right.material != m) break;
-      if (direction < 0 && nodes_[nodes_[n].prev].right.material != m) break;
+      if (n == kNone) break;
+      const Node& other = nodes_[n];
       // A merge costs at least the weaker front's strength times the distance between the
       // two. Where this front times the distance already exceeds what a merge may cost, a
       // cheap pair needs the other front to be the weaker one, and that front looks for
-      // this one when it next meets something: the walk stops (most crossings stop here).
-      if (strength * std::abs(nodes_[n].X_at(t) - X) > merge_) break;
-      if (nodes_[n].family != f) continue;
+      // this one when it next meets something: the walk stops (most crossings stop here,
+      // so this is asked first).
+      if (strength * std::abs(other.X_at(t) - X) > merge_) break;
+      if (other.kind != NodeKind::front || other.right.material != m) break;
+      if (direction < 0 && nodes_[other.prev].right.material != m) break;
+      if (other.family != f) continue;
       if (direction > 0 ? merge_across(id, n, t) : merge_across(n, id, t)) return;
       break;
     }
