@@ -168,6 +168,57 @@ TEST(ErrorBound, HoldsWhereFanStepsWidenWhileMergesDominate) {
   EXPECT_LT(fine_bound, 0.2 * bound);
 }
 
+// Two gas bars and a Hooke bar between a bonded wall and a piston, from a random scene: its
+// bound comes out twenty times below the tolerance, so `solver.resolution: auto` resolves
+// its waves more coarsely (to ten times the tolerance at most) for a bound near it.
+const std::string kQuietGas = R"(
+name: quiet_gas
+materials:
+  m0: {model: constant_sound_speed, sound_speed: 0.946, rest_density: 1.421}
+  m1: {model: constant_sound_speed, sound_speed: 0.42, rest_density: 1.617}
+  m2: {model: hooke, wave_speed: 0.759, rest_density: 2.038}
+bodies:
+  - {name: b0, material: m1, position: 0.0, segments: [{length: 0.2219, velocity: -0.2557, stretch: 0.9996}, {length: 0.257, velocity: -0.1024, stretch: 0.9553}]}
+  - {name: b1, material: m2, position: 0.5268, length: 0.5673, velocity: 0.242}
+  - {name: b2, material: m1, position: 1.0941, length: 0.9881, velocity: -0.1334}
+  - {name: b3, material: m0, position: 2.0822, length: 0.8276, velocity: -0.5966}
+boundaries: {left: {type: wall, bonded: true}, right: {type: piston, velocity: 0.211}}
+outputs: {snapshots: [{times: [0.6], quantities: [v, s], samples: 2001}]}
+time: {end: 0.6}
+)";
+
+SceneRun run_resolved(const std::string& yaml, double tolerance, const char* resolution) {
+  std::ostringstream text;
+  text.precision(17);
+  text << yaml << "solver: {method: characteristics, tolerance: " << tolerance << ", resolution: " << resolution
+       << "}\n";
+  SceneRun r{load_scene_string(text.str(), "<test>"), {}};
+  r.result = solve(r.scene);
+  return r;
+}
+
+TEST(ErrorBound, AutoResolutionAimsTheBoundAtTheTolerance) {
+  const double tolerance = 1e-4;
+  const SceneRun fixed = run_resolved(kQuietGas, tolerance, "tolerance");
+  const SceneRun automatic = run_resolved(kQuietGas, tolerance, "auto");
+  const double fixed_bound = solver_number(fixed.result, "error_bound");
+  const double bound = solver_number(automatic.result, "error_bound");
+  ASSERT_LT(fixed_bound, 0.1 * tolerance) << "the scene must leave room under its tolerance: the test checks nothing";
+  EXPECT_EQ(solver_number(automatic.result, "tolerance"), tolerance);
+  EXPECT_GT(solver_number(automatic.result, "resolution"), 2.0 * tolerance);
+  EXPECT_LE(solver_number(automatic.result, "resolution"), 10.0 * tolerance);
+  // Near the tolerance, not under it by the factor the fixed resolution leaves (measured 5.6e-5
+  // against 5.4e-6), at a tenth of the work or less (1 138 interactions against 113 039).
+  EXPECT_LE(bound, tolerance);
+  EXPECT_GT(bound, 3.0 * fixed_bound);
+  EXPECT_LT(automatic.result.stats.interactions, fixed.result.stats.interactions / 10);
+  // And it holds: against the run at the tolerance (its waves resolved ten times more
+  // finely), itself within its own bound.
+  const double error = distance(automatic, fixed);
+  EXPECT_GT(error, 0.0);
+  EXPECT_LE(error, bound + fixed_bound);
+}
+
 TEST(ErrorBound, FanStepsStayAtTheToleranceWithoutMerges) {
   // One gas bar: nothing merges, so nothing widens the fan steps beyond 2 × tolerance.
   const SceneRun r = run(kBouncingGas, 1e-3, 3.0);

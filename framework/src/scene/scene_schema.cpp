@@ -250,6 +250,11 @@ Key solver_key() {
                       "by default exact where waves are jumps, and fans as fine as 100000 steps allow")
               .above(0.0)
               .defaults_to(1.0e-12),
+          Key::choice("resolution", {"tolerance", "auto"},
+                      "characteristics: how finely waves are resolved: to the tolerance (the bound then "
+                      "usually comes out below it), or `auto`: as coarsely as keeps the bound near the tolerance, "
+                      "measured by a quiet pilot run at 10 x tolerance first")
+              .defaults_to(std::string("tolerance")),
           Key::integer("max_fronts",
                        "characteristics: most fronts alive at once, about 210 bytes each (the default is about "
                        "210 MB); beyond it the run stops cleanly with status `stopped` and the outputs up to then")

@@ -67,6 +67,9 @@ struct SolverDecl {
   /// False for the default: exact where the physics allows (linearly degenerate waves), and
   /// elsewhere the finest fans the step cap allows, with the error bound reported, not warned of.
   bool tolerance_given = false;
+  /// characteristics: resolve waves as coarsely as keeps the error bound near the tolerance
+  /// (a pilot run at kPilotResolution × tolerance measures the bound), not to the tolerance.
+  bool auto_resolution = false;
   long max_fronts = 1000000;  ///< characteristics: most fronts alive at once; beyond, the run stops (status stopped)
   long max_interactions = 100000000;  ///< characteristics: most interactions of a run; beyond, the run stops
   int cells = 400;                    ///< finite volume
