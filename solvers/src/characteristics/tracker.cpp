@@ -225,18 +225,38 @@ RunResult Tracker::run() {
   result_.solver_numbers.emplace_back("fronts_alive_max", static_cast<double>(live_fronts_max_));
   result_.solver_numbers.emplace_back("wave_resolution", coarsest_resolution_);
   result_.solver_numbers.emplace_back("fan_step_max", widest_fan_step_);
-  if (coarsest_resolution_ > scene_.solver.tolerance) {
-    const auto two_digits = [](double v) {
-      std::ostringstream os;
-      os.precision(2);
-      os << v;
-      return os.str();
-    };
+  const auto two_digits = [](double v) {
+    std::ostringstream os;
+    os.precision(2);
+    os << v;
+    return os.str();
+  };
+  const bool spray_coarsened = coarsest_resolution_ > scene_.solver.tolerance;
+  if (spray_coarsened) {
     result_.warnings.push_back("the droplets of a spray booked " +
                                two_digits(kStability * error_droplets_ / total_length_) +
                                " of the error bound, which no tolerance reduces: while they dominated, waves and "
                                "droplets were resolved more coarsely than solver.tolerance = " +
                                number(scene_.solver.tolerance) + ", at most to " + two_digits(coarsest_resolution_));
+  }
+  // A bound above the tolerance asked for: say which part holds it up and what would lower it.
+  if (scene_.solver.tolerance_given && error_bound > scene_.solver.tolerance &&
+      !fan_capped_) {  // (or the fan cap says why)
+    const double parts[4] = {error_merges_, error_fans_ + error_fans_alive, error_defects_, error_droplets_};
+    const int largest = static_cast<int>(std::max_element(parts, parts + 4) - parts);
+    static constexpr const char* kWhy[4] = {
+        "merges that held the live fronts to their cap (max(100, 0.3/tolerance) per body): the waves scatter into "
+        "more fronts than the cap lets the run follow",
+        "fan steps, widened while merges held the fronts to their cap (fan_step_max)",
+        "weak waves held back at interfaces and contacts", "droplets kept with their pieces"};
+    if (!(largest == 3 && spray_coarsened)) {  // a spray has said so above
+      result_.warnings.push_back("the error bound " + two_digits(error_bound) +
+                                 " is above solver.tolerance = " + number(scene_.solver.tolerance) + ": most of it (" +
+                                 two_digits(kStability * parts[largest] / total_length_) + ") booked by " +
+                                 kWhy[largest] +
+                                 "; a smaller tolerance lowers it at a cost that grows as its inverse square, a "
+                                 "shorter time.end in proportion");
+    }
   }
   Conservation& c = result_.conservation;
   totals(t_end, c.energy_final, c.momentum_final);
