@@ -247,7 +247,7 @@ RunResult Tracker::run() {
     static constexpr const char* kWhy[4] = {
         "merges that held the live fronts to their cap (max(100, 0.3/tolerance) per body): the waves scatter into "
         "more fronts than the cap lets the run follow",
-        "fan steps, widened while merges held the fronts to their cap (fan_step_max)",
+        "fan steps, whose error grows as their fans spread (the widest step is fan_step_max)",
         "weak waves held back at interfaces and contacts", "droplets kept with their pieces"};
     if (!(largest == 3 && spray_coarsened)) {  // a spray has said so above
       result_.warnings.push_back("the error bound " + two_digits(error_bound) +
