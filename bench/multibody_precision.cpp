@@ -65,12 +65,6 @@ Run run(const std::string& solver, double t_end) {
   return r;
 }
 
-double number(const RunResult& r, const std::string& name) {
-  for (const auto& [key, value] : r.solver_numbers)
-    if (key == name) return value;
-  return std::nan("");
-}
-
 /// Mean over the natural length of |δφ| + |δΨ| between two runs' final snapshots.
 double distance(const Run& a, const Run& b) {
   std::map<std::pair<int, double>, std::pair<double, double>> va, vb;
@@ -132,7 +126,7 @@ int main(int argc, char** argv) {
     std::cout << line << std::flush;
   };
   std::cout << "reference: tolerance 1e-5, " << reference.result.stats.interactions << " interactions, "
-            << reference.seconds << " s, bound " << number(reference.result, "error_bound") << "\n";
+            << reference.seconds << " s, bound " << reference.result.solver_number("error_bound") << "\n";
   for (double tolerance : tolerances) {
     std::ostringstream solver;
     solver << "{method: characteristics, tolerance: " << tolerance << "}";
@@ -140,11 +134,12 @@ int main(int argc, char** argv) {
     std::ostringstream setting;
     setting << "tolerance " << tolerance;
     row("characteristics", setting.str(), static_cast<double>(r.result.stats.interactions),
-        number(r.result, "fronts_alive_max"), r.seconds, number(r.result, "error_bound"), distance(r, reference));
+        r.result.solver_number("fronts_alive_max"), r.seconds, r.result.solver_number("error_bound"),
+        distance(r, reference));
   }
   for (int cells : {100, 200, 400, 800}) {
     const Run r = run("{method: finite_volume, cells: " + std::to_string(cells) + ", order: 2}", t_end);
-    const double work = number(r.result, "steps") * number(r.result, "cells_total");
+    const double work = r.result.solver_number("steps") * r.result.solver_number("cells_total");
     row("finite_volume", std::to_string(cells) + " cells per body, order 2", work, std::nan(""), r.seconds,
         std::nan(""), distance(r, reference));
   }

@@ -904,8 +904,6 @@ LabelJump label_jump(const State& a, const State& b) {
   LabelJump jump;
   jump.left = hyperbolic(a.rapidity);
   const Hyperbolic half = hyperbolic(0.5 * (b.rapidity - a.rapidity));
-  jump.sinh_half = half.sinh;
-  jump.cosh_half = half.cosh;
   jump.scaled_v = 2.0 * half.sinh * half.cosh;
   const double r = std::expm1(b.stretch.log() - a.stretch.log());
   jump.stretch_ratio_m1 = r;

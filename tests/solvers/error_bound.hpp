@@ -24,11 +24,7 @@ inline bool linearly_degenerate(const Scene& scene) {
 }
 
 /// A number the solver reported under `solver` in summary.json; NaN if it did not.
-inline double solver_number(const RunResult& r, std::string_view name) {
-  for (const auto& [key, value] : r.solver_numbers)
-    if (key == name) return value;
-  return std::numeric_limits<double>::quiet_NaN();
-}
+inline double solver_number(const RunResult& r, std::string_view name) { return r.solver_number(name); }
 
 /// The energy or momentum the books of a run may miss: 4 ρ00_max × (bound × total length),
 /// plus the round-off of sums of order `scale`.

@@ -26,6 +26,14 @@ bool Tracker::valid(const Event& e) const {
   return false;
 }
 
+namespace {
+/// Two things that touch and close no faster than the round-off of their speeds (the two
+/// free surfaces of a contact that has just parted at zero pressure, equal speeds but for the
+/// last bit) are not to meet again at this instant, which would part them again, and so on
+/// without end: they move on together until something changes their speeds.
+bool closing_by_round_off(double closing, double x1, double x2) { return closing <= 16.0 * kEps && touching(x1, x2); }
+}  // namespace
+
 void Tracker::schedule_gap(int left_piece, int right_piece) {
   const int a = pieces_[left_piece].right_end, b = pieces_[right_piece].left_end;
   const Node& na = nodes_[a];
@@ -34,11 +42,7 @@ void Tracker::schedule_gap(int left_piece, int right_piece) {
   const double closing = na.dxdt - nb.dxdt;
   if (!(closing > 0.0)) return;
   const double t_ref = std::max(na.t0, nb.t0);
-  // Ends that touch and close no faster than the round-off of their speeds (the two free
-  // surfaces of a contact that has just parted at zero pressure, equal speeds but for the
-  // last bit) do not meet again at this instant, which would part them again, and so on
-  // without end: they move on together until something changes their speeds.
-  if (closing <= 16.0 * kEps && touching(na.x_at(t_ref), nb.x_at(t_ref))) return;
+  if (closing_by_round_off(closing, na.x_at(t_ref), nb.x_at(t_ref))) return;
   const double t = t_ref + std::max(0.0, nb.x_at(t_ref) - na.x_at(t_ref)) / closing;
   if (t <= scene_.t_end) push(t, EventType::gap, a, b, na.version, nb.version);
 }
@@ -53,7 +57,7 @@ void Tracker::schedule_wall_gap(int side) {
   const double closing = side == 0 ? w.velocity() - n.dxdt : n.dxdt - w.velocity();
   if (!(closing > 0.0)) return;
   const double t_ref = std::max(n.t0, w.t0);
-  if (closing <= 16.0 * kEps && touching(n.x_at(t_ref), w.x_at(t_ref))) return;  // as in schedule_gap
+  if (closing_by_round_off(closing, n.x_at(t_ref), w.x_at(t_ref))) return;
   const double distance = side == 0 ? n.x_at(t_ref) - w.x_at(t_ref) : w.x_at(t_ref) - n.x_at(t_ref);
   const double t = t_ref + std::max(0.0, distance) / closing;
   if (t <= scene_.t_end && t <= w.next_change()) push(t, EventType::wall_gap, end, side, n.version, w.version);

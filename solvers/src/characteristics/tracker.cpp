@@ -323,12 +323,8 @@ namespace {
 /// this fraction of the tolerance.
 constexpr double kPilotResolution = 10.0;
 constexpr double kAutoTarget = 0.7;
-
-double solver_number(const RunResult& r, const std::string& name) {
-  for (const auto& [key, value] : r.solver_numbers)
-    if (key == name) return value;
-  return std::numeric_limits<double>::quiet_NaN();
-}
+/// Quiet runs that check a resolution between the tolerance and the pilot's, at most.
+constexpr int kAutoChecks = 3;
 
 /// A quiet run of the scene (no outputs, in memory) with its waves resolved to `resolution`:
 /// its bound (NaN if it does not finish), its solving time added to `time`.
@@ -341,7 +337,7 @@ double quiet_bound(const Scene& scene, double resolution, double& time) {
     MemoryRecorder quiet;
     const RunResult r = characteristics::Tracker(pilot, quiet).run();
     time += r.stats.wall_time_s;
-    return r.status == "ok" ? solver_number(r, "error_bound") : std::numeric_limits<double>::quiet_NaN();
+    return r.status == "ok" ? r.solver_number("error_bound") : std::numeric_limits<double>::quiet_NaN();
   } catch (const std::exception&) {
     return std::numeric_limits<double>::quiet_NaN();  // the run itself meets the problem and reports it
   }
@@ -358,7 +354,6 @@ double quiet_bound(const Scene& scene, double resolution, double& time) {
 /// gas bar bouncing off a wall: bound 0.21), so a resolution between the two is checked by a
 /// quiet run at it and scaled again until its bound is within the tolerance (at most
 /// kAutoChecks times; the tolerance itself after that).
-constexpr int kAutoChecks = 3;
 double auto_resolution(const Scene& scene, double& pilot_bound, double& pilot_time) {
   const double tolerance = scene.solver.tolerance;
   const double coarse = kPilotResolution * tolerance;

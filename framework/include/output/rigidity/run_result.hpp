@@ -5,7 +5,9 @@
 /// produces them; the vectors below hold them when the recorder keeps them in memory
 /// (solve(scene)), and stay empty when it streams them to disk.
 
+#include <limits>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -90,6 +92,12 @@ struct RunResult {
   std::string stop_reason;    ///< stopped or interrupted: why, and what to change
   std::string solver;         ///< "characteristics" | "finite_volume"
   std::vector<std::pair<std::string, double>> solver_numbers;  ///< e.g. tolerance, cells
+  /// The solver number called `name`, NaN if the run reported none.
+  [[nodiscard]] double solver_number(std::string_view name) const {
+    for (const auto& [key, value] : solver_numbers)
+      if (key == name) return value;
+    return std::numeric_limits<double>::quiet_NaN();
+  }
   std::vector<std::string> warnings;
   std::vector<RunEvent> events;  ///< every event (in memory), or the first RunRecorder::kFirstEvents (streamed)
   std::vector<std::pair<std::string, long>> event_counts;  ///< every event by kind, in order of first appearance

@@ -205,8 +205,6 @@ struct LabelJump {
   Hyperbolic left;                ///< of φa
   double left_stretch = 1.0;      ///< sa
   double stretch_ratio_m1 = 0.0;  ///< r = sb/sa − 1
-  double sinh_half = 0.0;         ///< sinh h
-  double cosh_half = 1.0;         ///< cosh h
   double scaled_v = 0.0;          ///< [v] cosh φa cosh φb
   double scaled_tau = 0.0;        ///< [τ] cosh φa cosh φb
   /// m = −[v]/[τ] (infinite or NaN where [τ] vanishes).
