@@ -69,4 +69,54 @@ BENCHMARK(BM_FiniteVolumeWallImpactExact)
     ->ArgNames({"cells", "order"})
     ->Unit(benchmark::kMillisecond);
 
+/// Cell updates per second of one scene at `cells` per body (Google Benchmark's items).
+void run_scene(benchmark::State& state, const std::string& yaml) {
+  const rigidity::Scene scene = rigidity::load_scene_string(yaml, "<bench>");
+  long updates = 0;
+  for (auto _ : state) {
+    const rigidity::RunResult r = rigidity::solve(scene);
+    updates += static_cast<long>(r.stats.interactions);  // one per face per step: about one per cell
+    benchmark::DoNotOptimize(r.conservation.energy_final);
+  }
+  state.SetItemsProcessed(updates);
+}
+
+/// Two rigid_fluid bars meeting at ±0.6c (the plateau of README "The finite-volume
+/// plateau"): most cells sit in uniform states ahead of the two shocks, and a cell whose
+/// U a step leaves unchanged keeps its state without a recovery.
+void BM_FiniteVolumeCollision(benchmark::State& state) {
+  run_scene(state, R"(
+name: rigid_fluid_collision
+materials: {fluid: {model: rigid_fluid}}
+bodies:
+  - {name: a, material: fluid, position: -1.0, length: 1.0, velocity: 0.6}
+  - {name: b, material: fluid, position: 0.0, length: 1.0, velocity: -0.6}
+time: {end: 0.3}
+solver: {method: finite_volume, cells: )" +
+                       std::to_string(state.range(0)) + ", order: 2, flux: hll}\n");
+}
+
+/// Every cell busy: a bar of 50 segments at alternating velocities ±0.3 between bonded
+/// walls rings until t = 0.25 (each cell's recovery and both HLL face states every step).
+void BM_FiniteVolumeRingingBar(benchmark::State& state, const char* law) {
+  std::string segments;
+  for (int k = 0; k < 50; ++k)
+    segments += std::string(k ? ", " : "") + "{length: 0.02, velocity: " + (k % 2 ? "-0.3}" : "0.3}");
+  run_scene(state, std::string("name: ringing\nmaterials: {m: ") + law +
+                       "}\nbodies: [{name: bar, material: m, position: 0.0, segments: [" + segments +
+                       "]}]\nboundaries: {left: {type: wall, bonded: true}, right: {type: wall, bonded: true}}\n"
+                       "time: {end: 0.25}\nsolver: {method: finite_volume, cells: " +
+                       std::to_string(state.range(0)) + ", order: 2, flux: hll}\n");
+}
+BENCHMARK(BM_FiniteVolumeCollision)->Arg(400)->Arg(3200)->ArgName("cells")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FiniteVolumeRingingBar, rigid, "{model: rigid}")
+    ->Arg(400)
+    ->Arg(3200)
+    ->ArgName("cells")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FiniteVolumeRingingBar, constant_sound_speed, "{model: constant_sound_speed, sound_speed: 0.5}")
+    ->Arg(400)
+    ->ArgName("cells")
+    ->Unit(benchmark::kMillisecond);
+
 }  // namespace

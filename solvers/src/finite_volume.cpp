@@ -189,9 +189,18 @@ class Scheme {
   std::vector<Conserved> u_;
   std::vector<State> state_;
   std::vector<double> speed_minus_, speed_plus_;  ///< λ∓ (Lagrangian) of the cell state
-  std::vector<State> face_left_, face_right_;     ///< order 2: predicted states at the faces
-  std::vector<FaceFlux> face_;                    ///< left face of cell c is c + body_of_[c]
-  std::vector<double> j_plus_, j_minus_;          ///< order 2: J± of every cell
+  // A cell whose U no step changed (its two face fluxes equal: a uniform region, common in
+  // these scenes of piecewise constant states) keeps its state, speeds and flux as they were.
+  std::vector<finite_volume::Recovered> recovered_;  ///< the last recovery of each cell: the next one starts there
+  std::vector<char> moved_;                          ///< U changed in the last step: recover (φ, s)
+  std::vector<char> speeds_stale_;                   ///< the state changed since λ∓ were computed
+  std::vector<char> flux_stale_;                     ///< the state changed since cell_flux_ was computed
+  std::vector<char> clamped_cell_;                   ///< held at the parting stretch with void beyond kVoidFraction
+  std::vector<FaceFlux> cell_flux_;                  ///< v and p of the cell state (the flux between equal states)
+  std::vector<char> face_is_cell_;                   ///< order 2: no slope, the face states are the cell state
+  std::vector<State> face_left_, face_right_;        ///< order 2: predicted states at the faces
+  std::vector<FaceFlux> face_;                       ///< left face of cell c is c + body_of_[c]
+  std::vector<double> j_plus_, j_minus_;             ///< order 2: J± of every cell
 
   std::vector<Body> bodies_;
   std::vector<Junction> junctions_;
@@ -273,6 +282,14 @@ void Scheme::build_cells() {
   const std::size_t n = state_.size();
   speed_minus_.assign(n, 0.0);
   speed_plus_.assign(n, 0.0);
+  moved_.assign(n, 1);
+  recovered_.resize(n);
+  for (std::size_t c = 0; c < n; ++c) recovered_[c].state = state_[c];
+  speeds_stale_.assign(n, 1);
+  flux_stale_.assign(n, 1);
+  clamped_cell_.assign(n, 0);
+  cell_flux_.assign(n, FaceFlux{});
+  face_is_cell_.assign(n, 0);
   if (order_ == 2) {
     face_left_.assign(n, State{});
     face_right_.assign(n, State{});
@@ -308,9 +325,12 @@ void Scheme::build_walls() {
 double Scheme::stable_step() {
   double dt = kInf;
   for (std::size_t c = 0; c < state_.size(); ++c) {
-    const finite_volume::LagrangianSpeeds speeds = finite_volume::lagrangian_speeds(*material_[c], state_[c]);
-    speed_minus_[c] = speeds.minus;
-    speed_plus_[c] = speeds.plus;
+    if (speeds_stale_[c]) {
+      const finite_volume::LagrangianSpeeds speeds = finite_volume::lagrangian_speeds(*material_[c], state_[c]);
+      speed_minus_[c] = speeds.minus;
+      speed_plus_[c] = speeds.plus;
+      speeds_stale_[c] = 0;
+    }
     const double fastest = std::max(-speed_minus_[c], speed_plus_[c]);
     dt = std::min(dt, width_[c] / fastest);
   }
@@ -381,6 +401,7 @@ void Scheme::reconstruct(double dt) {
           finite_volume::mc_limited_slope((jm[c] - left_minus) / left_distance, (right_minus - jm[c]) / right_distance);
     }
     face_left_[c] = face_right_[c] = state_[c];
+    face_is_cell_[c] = 1;
     if (slope.plus == 0.0 && slope.minus == 0.0) continue;
     // MUSCL–Hancock predictor in characteristic form: J± at the faces at t + Δt/2,
     // from ∂t J± + λ± ∂X J± = 0 (SPEC §1).
@@ -394,6 +415,7 @@ void Scheme::reconstruct(double dt) {
     if (!s_left.ok() || !s_right.ok()) continue;  // beyond the material's range: first order here
     face_left_[c] = State{0.5 * (plus_left + minus_left), s_left.value};
     face_right_[c] = State{0.5 * (plus_right + minus_right), s_right.value};
+    face_is_cell_[c] = 0;
   }
 }
 
@@ -405,10 +427,20 @@ FaceFlux Scheme::interior_flux(int a, int c, double t) {
   const double p_min = min_pressure(mL, mR, false);
   if (&mL == &mR && left.rapidity == right.rapidity && left.stretch == right.stretch) {
     // No jump: the flux of the state itself (the exact Riemann problem is costly for a
-    // genuinely nonlinear material, and uniform regions are common).
+    // genuinely nonlinear material, and uniform regions are common), that of cell a's
+    // state kept while it does not change.
     FaceFlux f;
-    f.velocity_left = f.velocity_right = std::tanh(left.rapidity);
-    f.pressure = mL.pressure(left.stretch);
+    if (order_ == 1 || face_is_cell_[a]) {
+      if (flux_stale_[a]) {
+        cell_flux_[a].velocity_left = cell_flux_[a].velocity_right = std::tanh(left.rapidity);
+        cell_flux_[a].pressure = mL.pressure(left.stretch);
+        flux_stale_[a] = 0;
+      }
+      f = cell_flux_[a];
+    } else {
+      f.velocity_left = f.velocity_right = std::tanh(left.rapidity);
+      f.pressure = mL.pressure(left.stretch);
+    }
     if (f.pressure >= p_min) return f;
   }
   if (scene_.solver.flux == FluxType::hll) {
@@ -531,7 +563,9 @@ void Scheme::advance(double dt) {
     // U_i −= Δt/ΔX (F_{i+1/2} − F_{i−1/2}), F = (−v, p).
     const Flux left{-fl.velocity_right, fl.pressure};
     const Flux right{-fr.velocity_left, fr.pressure};
-    u_[i] -= (dt / width_[i]) * (right - left);
+    const Flux difference = right - left;
+    moved_[i] = difference[0] != 0.0 || difference[1] != 0.0;
+    if (moved_[i]) u_[i] -= (dt / width_[i]) * difference;
   }
   for (Body& b : bodies_) {
     b.x_left += face_[left_face(b.first)].velocity_right * dt;
@@ -558,9 +592,16 @@ void Scheme::recover(double t) {
   std::vector<bool> clamped(bodies_.size(), false);
   std::vector<int> first_clamped(bodies_.size(), -1);
   for (std::size_t i = 0; i < state_.size(); ++i) {
-    const finite_volume::Recovered r =
-        finite_volume::recover_state(*material_[i], bounds_[i], u_[i], state_[i].rapidity);
     const int c = static_cast<int>(i);
+    if (!moved_[i]) {
+      if (clamped_cell_[i]) {
+        const int b = body_of_[c];
+        if (!clamped[b]) first_clamped[b] = c;
+        clamped[b] = true;
+      }
+      continue;
+    }
+    const finite_volume::Recovered r = finite_volume::recover_state(*material_[i], bounds_[i], u_[i], recovered_[i]);
     if (!r.ok()) {
       std::ostringstream os;
       os.precision(12);
@@ -572,10 +613,14 @@ void Scheme::recover(double t) {
       throw NumericalError(os.str());
     }
     state_[i] = r.state;
+    recovered_[i] = r;
+    speeds_stale_[i] = flux_stale_[i] = 1;
+    clamped_cell_[i] = 0;
     // Clamps of a cell at the parting stretch by round-off (a free surface of a fluid
     // sits exactly there) hold no void worth the name: only a void fraction beyond
     // kVoidFraction counts as cavitation.
     if (r.cavitated && 1.0 - r.state.stretch.value() / std::cosh(r.state.rapidity) / u_[i][0] > kVoidFraction) {
+      clamped_cell_[i] = 1;
       const int b = body_of_[c];
       if (!clamped[b]) first_clamped[b] = c;
       clamped[b] = true;

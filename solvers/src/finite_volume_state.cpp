@@ -53,16 +53,44 @@ struct MomentumCurve {
   /// G and G' = (e+p) s (1 + (1 − c_s²) sinh² φ)/cosh φ at φ ≥ 0, from one exponential
   /// of φ (this is the inner loop of every finite-volume step): cosh, sinh and ln cosh
   /// from it, and s = L cosh φ.
-  void evaluate(double phi, double& g, double& dg) const {
+  struct Point {
+    double phi, g, dg;
+    double log_s;         ///< ln s = ln L + ln cosh φ
+    double sinh, cosh;    ///< of φ
+    double h;             ///< (e+p) s
+    double sound_speed2;  ///< c_s²
+  };
+  [[nodiscard]] Point evaluate(double phi) const {
     const Hyperbolic hy = hyperbolic(phi);
-    const double sh = hy.sinh, ch = hy.cosh;
-    const Stretch s = Stretch::from_log(log_labels + log_cosh(phi, hy.em));
-    const double h = material->enthalpy_density(s) * labels * ch;
+    Point p{};
+    p.phi = phi;
+    p.sinh = hy.sinh;
+    p.cosh = hy.cosh;
+    p.log_s = log_labels + log_cosh(phi, hy.em);
+    const Stretch s = Stretch::from_log(p.log_s);
     const double c = material->sound_speed(s);
-    g = h * sh;
-    dg = h * (1.0 + (1.0 - c) * (1.0 + c) * sh * sh) / ch;
+    p.h = material->enthalpy_density(s) * labels * hy.cosh;
+    p.sound_speed2 = c * c;
+    p.g = p.h * hy.sinh;
+    p.dg = p.h * (1.0 + (1.0 - p.sound_speed2) * hy.sinh * hy.sinh) / hy.cosh;
+    return p;
   }
 };
+
+/// The state at φ = sign × next, near the last point evaluated: ln s moves by
+/// tanh φ (next − φ) (the step is at round-off or below 1e-8: its square is not seen),
+/// with the sensitivity of φ to U there for the next recovery.
+Recovered settle(const MomentumCurve::Point& at, double next, double sign, const Conserved& u) {
+  Recovered r;
+  r.state = State{sign * next, Stretch::from_log(at.log_s + at.sinh / at.cosh * (next - at.phi))};
+  r.u = u;
+  // δU₁ = h (cosh φ δφ − c² sinh φ δz) and δz = δ ln L + tanh φ δφ (z = ln s, d ln h/dz = −c²).
+  const double d = 1.0 + (1.0 - at.sound_speed2) * at.sinh * at.sinh;
+  r.dphi_dmomentum = at.cosh / (at.h * d);
+  r.dphi_dloglabels = sign * at.sound_speed2 * at.sinh * at.cosh / d;
+  r.enthalpy_per_label = at.h;
+  return r;
+}
 
 Recovered failed(Status status) {
   Recovered r;
@@ -96,6 +124,13 @@ Recovered recover_state(const Material& m, const Conserved& u, double rapidity_g
 }
 
 Recovered recover_state(const Material& m, const RecoveryBounds& bounds, const Conserved& u, double rapidity_guess) {
+  Recovered none;
+  none.state.rapidity = rapidity_guess;
+  return recover_state(m, bounds, u, none);
+}
+
+Recovered recover_state(const Material& m, const RecoveryBounds& bounds, const Conserved& u,
+                        const Recovered& previous) {
   const double labels = u[0], momentum = u[1];
   if (!(labels > 0.0) || !std::isfinite(labels) || !std::isfinite(momentum)) return failed(Status::out_of_range);
   const double log_labels = std::log(labels);
@@ -130,8 +165,9 @@ Recovered recover_state(const Material& m, const RecoveryBounds& bounds, const C
   if (lo > 0.0 && curve.value(lo) > target) return failed(Status::out_of_range);
 
   // A tiny momentum (down to subnormal numbers): G(φ) = h(φ) sinh φ with h(φ) = h(0)(1 + O(φ²)),
-  // so φ = asinh(|U₁|/h(0)) is exact to round-off below 1e-8 and needs no iteration.
-  if (lo == 0.0) {
+  // so φ = asinh(|U₁|/h(0)) is exact to round-off below 1e-8 and needs no iteration. Asked
+  // only where the cell's last (e+p) s (which moves little in a step) does not rule it out.
+  if (lo == 0.0 && !(target >= 1e-6 * previous.enthalpy_per_label)) {
     const double h0 = curve.enthalpy_per_label(0.0);
     if (target < 1e-8 * h0) {
       const double phi = std::asinh(target / h0);
@@ -143,16 +179,20 @@ Recovered recover_state(const Material& m, const RecoveryBounds& bounds, const C
   // bracket [lo, hi] bisects it, or, while no point above the root is known, doubles
   // φ outwards (G may underflow far beyond the root, so the cap is a poor first try).
   bool hi_known = false;  // G(hi) ≥ |U₁| established
-  double phi = std::abs(rapidity_guess);
+  double phi = previous.state.rapidity;
+  if (std::isfinite(previous.dphi_dmomentum)) {
+    phi += previous.dphi_dmomentum * (momentum - previous.u[1]) +
+           previous.dphi_dloglabels * (labels - previous.u[0]) / previous.u[0];
+  }
+  phi = std::abs(phi);
   if (!(phi > lo && phi <= hi)) {  // a guess at the cap (a cell clamped there) settles in one evaluation
     phi = std::min(lo + target / curve.enthalpy_per_label(lo), 0.5 * (lo + hi));  // G ≈ h φ for small φ
     if (!(phi > lo)) phi = 0.5 * (lo + hi);
   }
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
-    double g = 0.0, dg = 0.0;
-    curve.evaluate(phi, g, dg);
-    const double residual = g - target;
-    if (residual == 0.0) return Recovered{State{sign * phi, curve.stretch(phi)}, Status::ok, false};
+    const MomentumCurve::Point at = curve.evaluate(phi);
+    const double residual = at.g - target;
+    if (residual == 0.0) return settle(at, phi, sign, u);
     if (residual < 0.0) {
       lo = phi;
       if (phi >= hi) {
@@ -164,7 +204,7 @@ Recovered recover_state(const Material& m, const RecoveryBounds& bounds, const C
       hi = phi;
       hi_known = true;
     }
-    double next = phi - residual / dg;
+    double next = phi - residual / at.dg;
     const bool newton = next > lo && next < hi;
     if (!newton) next = hi_known ? 0.5 * (lo + hi) : std::min(2.0 * std::max(phi, 0.5), hi);
     // A Newton step leaves an error of about (g''/2g') × step², with g''/g' at most of order
@@ -173,8 +213,8 @@ Recovered recover_state(const Material& m, const RecoveryBounds& bounds, const C
     const bool converged = std::abs(next - phi) <= 2.0 * kEps * std::abs(next) + std::numeric_limits<double>::min() ||
                            (newton && std::abs(next - phi) <= kNewtonSettled * std::min(std::abs(next), 1.0)) ||
                            (hi_known && hi - lo <= 2.0 * kEps * hi);
+    if (converged) return settle(at, next, sign, u);
     phi = next;
-    if (converged) return Recovered{State{sign * phi, curve.stretch(phi)}, Status::ok, false};
   }
   return failed(Status::not_converged);
 }

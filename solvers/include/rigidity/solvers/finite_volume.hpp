@@ -88,6 +88,13 @@ struct Recovered {
   /// the state is clamped at the parting stretch (momentum kept), and the rest of
   /// the label density s/γ is void.
   bool cavitated = false;
+  /// For the next recovery of the same cell, whose U a step has moved by δU: the
+  /// sensitivity of φ to U at this state, δφ = dφ/dU₁ δU₁ + dφ/d ln L δL/L (NaN where
+  /// unknown), and (e+p) s there.
+  Conserved u{std::numeric_limits<double>::quiet_NaN(), 0.0};
+  double dphi_dmomentum = std::numeric_limits<double>::quiet_NaN();
+  double dphi_dloglabels = 0.0;
+  double enthalpy_per_label = std::numeric_limits<double>::quiet_NaN();
   [[nodiscard]] bool ok() const { return status == Status::ok; }
 };
 
@@ -114,6 +121,12 @@ struct RecoveryBounds {
 /// recover_state with the material's bounds computed beforehand.
 [[nodiscard]] Recovered recover_state(const Material& material, const RecoveryBounds& bounds, const Conserved& u,
                                       double rapidity_guess);
+
+/// recover_state started from the state a cell had before a step moved its U from
+/// `previous.u` to `u`: Newton from the first-order prediction φ + δφ (its error is
+/// second order in δU), one evaluation of the material fewer than from φ itself.
+[[nodiscard]] Recovered recover_state(const Material& material, const RecoveryBounds& bounds, const Conserved& u,
+                                      const Recovered& previous);
 
 /// What goes through a face. The momentum flux p is common; the label flux is −v
 /// with v the velocity of the face seen from each side, which differ only where the
