@@ -1,14 +1,23 @@
 #pragma once
+#include <algorithm>
+#include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
 namespace rigidity::characteristics {
 
-/// The next meeting of each node with its right neighbour: an indexed 4-ary min-heap.
-/// A node has at most one entry, and the heap knows where it is, so rescheduling a
-/// node moves its entry up or down in place and cancelling removes it: the heap holds
-/// only live meetings (no stale entries to pop), and four children per level make it
-/// half as deep as a binary heap, with the children of a slot side by side in memory.
+/// The next meeting of each node with its right neighbour: a radix heap on the meeting
+/// times. Time only moves forward (no meeting is scheduled before the last one taken,
+/// save by round-off, which is taken at once), so the queue is monotone and a radix heap
+/// suits it: entries sit in buckets by the highest bit in which their time differs from
+/// the last time taken (times ≥ 0 order as their bit patterns), a new entry costs an
+/// append, and taking the earliest scans the lowest non-empty bucket and deals its
+/// entries into lower ones, each entry falling a few buckets at a time over its life.
+/// Rescheduling a node appends a new entry and leaves the old one stale (it no longer
+/// carries the node's live `seq`); stale entries are dropped when a scan meets them, and
+/// all at once when they outnumber the live ones three to one, so memory stays bounded by
+/// the nodes, not the run.
 /// Ties in time go to the meeting scheduled first (`seq`), so runs are deterministic.
 class MeetingQueue {
  public:
@@ -18,130 +27,134 @@ class MeetingQueue {
     int node;
   };
 
-  [[nodiscard]] bool empty() const { return heap_.empty(); }
-  [[nodiscard]] std::size_t size() const { return heap_.size(); }
-  [[nodiscard]] const Entry& top() const { return heap_.front(); }
+  [[nodiscard]] bool empty() const { return live_ == 0; }
+  [[nodiscard]] std::size_t size() const { return live_; }
+  /// The earliest live meeting. \pre !empty()
+  [[nodiscard]] const Entry& top() {
+    if (!settled_) settle();
+    return buckets_[0].front();
+  }
 
   void set(int node, double t, std::uint64_t seq) {
     grow(node);
-    const Entry e{t, seq, node};
-    const int at = position_[static_cast<std::size_t>(node)];
-    if (at == kAbsent) {
-      heap_.push_back(e);
-      sift_up(heap_.size() - 1, e);
-      return;
-    }
-    const std::size_t i = static_cast<std::size_t>(at);
-    if (earlier(e, heap_[i])) {
-      sift_up(i, e);
-    } else {
-      sift_down(i, e);
-    }
+    std::uint64_t& live = live_seq_[static_cast<std::size_t>(node)];
+    if (live == kAbsent) ++live_;
+    live = seq;
+    push(Entry{t, seq, node});
   }
 
   [[nodiscard]] bool contains(int node) const {
-    return node < static_cast<int>(position_.size()) && position_[static_cast<std::size_t>(node)] != kAbsent;
+    return node < static_cast<int>(live_seq_.size()) && live_seq_[static_cast<std::size_t>(node)] != kAbsent;
   }
 
   /// Hands the entry of `from` (which has one) to `to` (which has none), at time t.
   void move(int from, int to, double t, std::uint64_t seq) {
-    grow(to);
-    const std::size_t i = static_cast<std::size_t>(position_[static_cast<std::size_t>(from)]);
-    position_[static_cast<std::size_t>(from)] = kAbsent;
-    const Entry e{t, seq, to};
-    if (i > 0 && earlier(e, heap_[(i - 1) / kArity])) {
-      sift_up(i, e);
-    } else {
-      sift_down(i, e);
-    }
+    erase(from);
+    set(to, t, seq);
   }
 
   void erase(int node) {
-    if (node >= static_cast<int>(position_.size())) return;
-    const int at = position_[static_cast<std::size_t>(node)];
-    if (at == kAbsent) return;
-    position_[static_cast<std::size_t>(node)] = kAbsent;
-    const Entry last = heap_.back();
-    heap_.pop_back();
-    const std::size_t i = static_cast<std::size_t>(at);
-    if (i == heap_.size()) return;  // it was the last entry
-    if (i == 0) {
-      pop_root(last);
-      return;
-    }
-    if (earlier(last, heap_[i])) {
-      sift_up(i, last);
-    } else {
-      sift_down(i, last);
-    }
+    if (!contains(node)) return;
+    live_seq_[static_cast<std::size_t>(node)] = kAbsent;
+    --live_;
+    settled_ = false;
   }
 
  private:
-  static constexpr int kAbsent = -1;
-  static constexpr std::size_t kArity = 4;
+  static constexpr std::uint64_t kAbsent = ~std::uint64_t{0};
+  static constexpr int kBuckets = 65;
 
-  /// Without branches: which of four children is earliest is a coin toss the branch
-  /// predictor cannot learn.
-  static bool earlier(const Entry& a, const Entry& b) {
-    return static_cast<bool>(static_cast<int>(a.t < b.t) |
-                             (static_cast<int>(a.t == b.t) & static_cast<int>(a.seq < b.seq)));
+  static bool earlier(const Entry& a, const Entry& b) { return a.t < b.t || (a.t == b.t && a.seq < b.seq); }
+  /// The order of bucket 0, a binary heap: its entries share the last time taken, save
+  /// meetings a rare event (handled first) scheduled before it, and ties go by `seq`.
+  static bool later(const Entry& a, const Entry& b) { return earlier(b, a); }
+  [[nodiscard]] bool live(const Entry& e) const { return live_seq_[static_cast<std::size_t>(e.node)] == e.seq; }
+  /// The bucket of a time: 0 at (or, by round-off, before) the last time taken, else one
+  /// more than the highest bit in which it differs from it.
+  [[nodiscard]] int bucket(double t) const {
+    if (!(t > last_)) return 0;
+    return 64 - std::countl_zero(std::bit_cast<std::uint64_t>(t) ^ std::bit_cast<std::uint64_t>(last_));
   }
   void grow(int node) {
-    if (node < static_cast<int>(position_.size())) return;
-    position_.resize(static_cast<std::size_t>(node) + 1, kAbsent);
+    if (node < static_cast<int>(live_seq_.size())) return;
+    live_seq_.resize(static_cast<std::size_t>(node) + 1, kAbsent);
   }
-  void place(std::size_t i, const Entry& e) {
-    heap_[i] = e;
-    position_[static_cast<std::size_t>(e.node)] = static_cast<int>(i);
-  }
-  /// Puts e at slot i or above it, moving later parents down.
-  void sift_up(std::size_t i, const Entry& e) {
-    while (i > 0) {
-      const std::size_t parent = (i - 1) / kArity;
-      if (!earlier(e, heap_[parent])) break;
-      place(i, heap_[parent]);
-      i = parent;
+  void push(const Entry& e) {
+    const int b = bucket(e.t);
+    buckets_[b].push_back(e);
+    if (b > 0) {
+      filled_ |= std::uint64_t{1} << (b - 1);
+    } else {
+      std::push_heap(buckets_[0].begin(), buckets_[0].end(), later);
     }
-    place(i, e);
+    settled_ = false;
+    if (++entries_ > 4 * live_ + 1024) drop_stale();
   }
-  /// The earliest child of slot i, or the heap's size if it has none.
-  [[nodiscard]] std::size_t earliest_child(std::size_t i) const {
-    const std::size_t n = heap_.size();
-    const std::size_t first = kArity * i + 1;
-    if (first >= n) return n;
-    std::size_t best = first;
-    const std::size_t end = first + kArity < n ? first + kArity : n;
-    for (std::size_t c = first + 1; c < end; ++c) best = earlier(heap_[c], heap_[best]) ? c : best;
-    return best;
+  void drop_stale() {
+    entries_ = 0;
+    for (int b = 0; b < kBuckets; ++b) {
+      std::vector<Entry>& bucket = buckets_[b];
+      std::size_t kept = 0;
+      for (const Entry& e : bucket)
+        if (live(e)) bucket[kept++] = e;
+      bucket.resize(kept);
+      entries_ += kept;
+      if (b > 0 && kept == 0) filled_ &= ~(std::uint64_t{1} << (b - 1));
+    }
+    std::make_heap(buckets_[0].begin(), buckets_[0].end(), later);
+    settled_ = false;
   }
-  /// Puts e at slot i or below it, moving earlier children up.
-  void sift_down(std::size_t i, const Entry& e) {
+  /// Makes the top of bucket 0 its earliest live entry, refilling bucket 0 from the lowest
+  /// non-empty bucket when it holds none.
+  void settle() {
     for (;;) {
-      const std::size_t best = earliest_child(i);
-      if (best == heap_.size() || !earlier(heap_[best], e)) break;
-      place(i, heap_[best]);
-      i = best;
+      std::vector<Entry>& first = buckets_[0];
+      while (!first.empty() && !live(first.front())) {
+        std::pop_heap(first.begin(), first.end(), later);
+        first.pop_back();
+        --entries_;
+      }
+      if (!first.empty()) {
+        settled_ = true;
+        return;
+      }
+      if (filled_ == 0) return;  // nothing live: the caller asked an empty queue
+      const int b = std::countr_zero(filled_) + 1;
+      filled_ &= ~(std::uint64_t{1} << (b - 1));
+      std::vector<Entry>& from = buckets_[b];
+      entries_ -= from.size();
+      double earliest = 0.0;
+      bool any = false;
+      for (const Entry& e : from)
+        if (live(e) && (!any || e.t < earliest)) {
+          earliest = e.t;
+          any = true;
+        }
+      if (any) {
+        last_ = earliest;
+        for (const Entry& e : from) {
+          if (!live(e)) continue;
+          const int to = bucket(e.t);
+          buckets_[to].push_back(e);
+          if (to > 0) {
+            filled_ |= std::uint64_t{1} << (to - 1);
+          } else {
+            std::push_heap(buckets_[0].begin(), buckets_[0].end(), later);
+          }
+          ++entries_;
+        }
+      }
+      from.clear();
     }
-    place(i, e);
   }
 
-  /// Removing the earliest meeting (what every crossing does): the entry that refills the
-  /// root is one of the latest, so instead of comparing it on the way down, the hole walks
-  /// down to a leaf along the earliest children and the entry rises from there (Floyd),
-  /// usually not at all.
-  void pop_root(const Entry& last) {
-    std::size_t i = 0;
-    for (;;) {
-      const std::size_t best = earliest_child(i);
-      if (best == heap_.size()) break;
-      place(i, heap_[best]);
-      i = best;
-    }
-    sift_up(i, last);
-  }
-
-  std::vector<Entry> heap_;
-  std::vector<int> position_;  ///< slot of each node's entry, or kAbsent
+  std::vector<Entry> buckets_[kBuckets];
+  std::vector<std::uint64_t> live_seq_;  ///< seq of each node's live entry, or kAbsent
+  std::size_t live_ = 0;                 ///< nodes with a live entry
+  double last_ = 0.0;                    ///< the last time taken from the top
+  std::uint64_t filled_ = 0;             ///< bit b − 1 set: bucket b > 0 holds entries
+  std::size_t entries_ = 0;              ///< entries in all buckets, live and stale
+  bool settled_ = false;
 };
 
 }  // namespace rigidity::characteristics
