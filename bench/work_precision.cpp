@@ -339,9 +339,11 @@ double characteristics_error(const SceneDef& def, Config& c) {
         break;
       }
       if (4 * (samples - 1) + 1 > kMaxSamples) {
-        c.note += (c.note.empty() ? "" : "; ") + std::string("fronts not separated by the samples: error unreliable");
-        worst = std::max(worst, sum);
-        break;
+        // More fronts than the samples can separate (a fan of 10⁵ steps): no error is
+        // reported rather than one from a profile the solver does not hold.
+        c.note += (c.note.empty() ? "" : "; ") +
+                  format("fronts not separated by %d samples per body: error not measured", samples);
+        return std::numeric_limits<double>::quiet_NaN();
       }
     }
   }
@@ -415,7 +417,10 @@ std::string cpu_model() {
   return "unknown CPU";
 }
 
-std::string sci(double v) { return v == 0.0 ? std::string("0") : format("%.2e", v); }
+std::string sci(double v) {
+  if (std::isnan(v)) return "not measured";
+  return v == 0.0 ? std::string("0") : format("%.2e", v);
+}
 std::string seconds(double v) { return format("%.3g", v); }
 
 struct Comparison {
@@ -430,7 +435,7 @@ struct Comparison {
 Comparison compare(const std::vector<Config>& configs, int scene) {
   Comparison out;
   for (const Config& c : configs) {
-    if (c.scene != scene || !c.measured) continue;
+    if (c.scene != scene || !c.measured || std::isnan(c.error)) continue;
     if (c.finite_volume) {
       if (c.time_s <= kBudget && (out.fv == nullptr || c.error < out.fv->error)) out.fv = &c;
     } else if (out.best == nullptr || c.error < out.best->error) {
@@ -439,7 +444,7 @@ Comparison compare(const std::vector<Config>& configs, int scene) {
   }
   if (out.fv != nullptr)
     for (const Config& c : configs)
-      if (c.scene == scene && c.measured && !c.finite_volume && c.error <= out.fv->error) {
+      if (c.scene == scene && c.measured && !c.finite_volume && !std::isnan(c.error) && c.error <= out.fv->error) {
         out.match = &c;
         break;
       }

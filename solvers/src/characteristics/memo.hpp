@@ -9,7 +9,9 @@
 // would compute, without its logarithms, square roots and exponentials.
 #include <array>
 #include <bit>
+#include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "rigidity/material.hpp"
 #include "rigidity/solvers/riemann.hpp"
@@ -18,6 +20,10 @@ namespace rigidity::characteristics {
 
 class MaterialMemo {
  public:
+  /// Tables of `slots` entries each (a power of two): a scene of a few segments visits few
+  /// states, and clearing a thousand slots would cost it more than its whole solve.
+  explicit MaterialMemo(std::size_t slots) : mask_(slots - 1), psi_(slots), stretch_(slots), speeds_(slots) {}
+
   /// m.riemann_psi(s)
   double psi(const Material& m, Stretch s) {
     PsiSlot& slot = psi_[index(&m, s.log(), 0.0, 0)];
@@ -54,8 +60,6 @@ class MaterialMemo {
   }
 
  private:
-  static constexpr std::size_t kSlots = 1024;  // a power of two
-
   struct PsiSlot {
     const Material* material = nullptr;
     double log_s = 0.0, psi = 0.0;
@@ -78,18 +82,19 @@ class MaterialMemo {
     Solved<double> psi{0.0, Status::ok};
   };
 
-  static std::size_t index(const Material* m, double a, double b, int family) {
+  [[nodiscard]] std::size_t index(const Material* m, double a, double b, int family) const {
     std::uint64_t h = std::bit_cast<std::uint64_t>(a) * 0x9E3779B97F4A7C15ULL;
     h ^= std::bit_cast<std::uint64_t>(b) * 0xC2B2AE3D27D4EB4FULL;
     h ^= reinterpret_cast<std::uintptr_t>(m) * 0x165667B19E3779F9ULL;
     h += static_cast<std::uint64_t>(family + 1);
     h ^= h >> 29;
-    return static_cast<std::size_t>(h) & (kSlots - 1);
+    return static_cast<std::size_t>(h) & mask_;
   }
 
-  std::array<PsiSlot, kSlots> psi_{};
-  std::array<StretchSlot, kSlots> stretch_{};
-  std::array<SpeedSlot, kSlots> speeds_{};
+  std::size_t mask_;
+  std::vector<PsiSlot> psi_;
+  std::vector<StretchSlot> stretch_;
+  std::vector<SpeedSlot> speeds_;
   std::array<PartingSlot, kPartingSlots> parting_{};
 };
 

@@ -8,6 +8,7 @@
 //   boundaries.cpp    walls, pistons, gaps, contacts, cracks and the rare events
 //   outputs.cpp       samples, front segments, energy books
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -210,6 +211,9 @@ struct WaveStates {
 class Tracker {
  public:
   Tracker(const Scene& scene, RunRecorder& recorder) : scene_(scene), recorder_(recorder) {
+    std::size_t segments = 0;
+    for (const BodyDecl& body : scene.bodies) segments += body.segments.size();
+    memo_ = std::make_unique<MaterialMemo>(std::bit_ceil(std::clamp<std::size_t>(64 * segments, 16, 1024)));
     want_fronts_ = scene.outputs.fronts;
     fan_step_ = kFanStepPerTolerance * scene.solver.tolerance;
   }
@@ -368,7 +372,7 @@ class Tracker {
   RunRecorder& recorder_;  ///< fronts, samples and events go there as they are produced
   bool want_fronts_ = false;
   /// Ψ, stretches and characteristic speeds of the states linearly degenerate crossings revisit.
-  std::unique_ptr<MaterialMemo> memo_ = std::make_unique<MaterialMemo>();
+  std::unique_ptr<MaterialMemo> memo_;
   double fan_step_ = 1e-12;
   bool fan_capped_ = false;
   // ---- the error budget (see README "What the tolerance means") --------------------
