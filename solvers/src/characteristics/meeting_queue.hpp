@@ -3,17 +3,22 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
+#include <limits>
 #include <vector>
 
 namespace rigidity::characteristics {
 
 /// The next meeting of each node with its right neighbour: a radix heap on the meeting
-/// times. Time only moves forward (no meeting is scheduled before the last one taken,
-/// save by round-off, which is taken at once), so the queue is monotone and a radix heap
-/// suits it: entries sit in buckets by the highest bit in which their time differs from
-/// the last time taken (times ≥ 0 order as their bit patterns), a new entry costs an
-/// append, and taking the earliest scans the lowest non-empty bucket and deals its
-/// entries into lower ones, each entry falling a few buckets at a time over its life.
+/// times, in hexadecimal digits. Time only moves forward (no meeting is scheduled before
+/// the last one taken, save those a rare event handled first schedules, and round-off),
+/// so the queue is monotone and a radix heap suits it: times ≥ 0 order as their bit
+/// patterns, and an entry sits in the bucket of the highest hexadecimal digit in which
+/// its time differs from the last time taken, and of its value there. A new entry costs
+/// an append; taking the earliest deals the lowest non-empty bucket out into lower ones
+/// from its earliest entry, each entry falling at least one digit each time, a couple of
+/// times over its life (with binary digits, about log₂ of the entries). Bucket 0 (the
+/// last time taken and anything scheduled before it) is a small binary heap.
 /// Rescheduling a node appends a new entry and leaves the old one stale (it no longer
 /// carries the node's live `seq`); stale entries are dropped when a scan meets them, and
 /// all at once when they outnumber the live ones three to one, so memory stays bounded by
@@ -26,6 +31,8 @@ class MeetingQueue {
     std::uint64_t seq;
     int node;
   };
+
+  MeetingQueue() { std::fill(std::begin(earliest_), std::end(earliest_), kNever); }
 
   [[nodiscard]] bool empty() const { return live_ == 0; }
   [[nodiscard]] std::size_t size() const { return live_; }
@@ -62,31 +69,48 @@ class MeetingQueue {
 
  private:
   static constexpr std::uint64_t kAbsent = ~std::uint64_t{0};
-  static constexpr int kBuckets = 65;
+  static constexpr int kDigits = 16;                  ///< hexadecimal digits of a 64-bit time
+  static constexpr int kBuckets = 1 + kDigits * 16;   ///< bucket 0, then (digit, value) in time order
+  static constexpr int kWords = (kBuckets - 1) / 64;  ///< of the bitmap of non-empty buckets above 0
+  static constexpr double kNever = std::numeric_limits<double>::infinity();
 
   static bool earlier(const Entry& a, const Entry& b) { return a.t < b.t || (a.t == b.t && a.seq < b.seq); }
   /// The order of bucket 0, a binary heap: its entries share the last time taken, save
-  /// meetings a rare event (handled first) scheduled before it, and ties go by `seq`.
+  /// meetings scheduled before it, and ties go by `seq`.
   static bool later(const Entry& a, const Entry& b) { return earlier(b, a); }
   [[nodiscard]] bool live(const Entry& e) const { return live_seq_[static_cast<std::size_t>(e.node)] == e.seq; }
-  /// The bucket of a time: 0 at (or, by round-off, before) the last time taken, else one
-  /// more than the highest bit in which it differs from it.
+  /// The bucket of a time: 0 at (or before) the last time taken, else 1 + 16 d + v for the
+  /// highest hexadecimal digit d in which it differs from it and its value v there.
   [[nodiscard]] int bucket(double t) const {
     if (!(t > last_)) return 0;
-    return 64 - std::countl_zero(std::bit_cast<std::uint64_t>(t) ^ std::bit_cast<std::uint64_t>(last_));
+    const std::uint64_t key = std::bit_cast<std::uint64_t>(t);
+    const int digit = (63 - std::countl_zero(key ^ std::bit_cast<std::uint64_t>(last_))) / 4;
+    return 1 + 16 * digit + static_cast<int>((key >> (4 * digit)) & 15U);
+  }
+  void mark(int b) { filled_[(b - 1) / 64] |= std::uint64_t{1} << ((b - 1) % 64); }
+  void unmark(int b) { filled_[(b - 1) / 64] &= ~(std::uint64_t{1} << ((b - 1) % 64)); }
+  /// The lowest non-empty bucket above 0, or 0 if there is none.
+  [[nodiscard]] int lowest_filled() const {
+    for (int w = 0; w < kWords; ++w)
+      if (filled_[w] != 0) return 1 + 64 * w + std::countr_zero(filled_[w]);
+    return 0;
   }
   void grow(int node) {
     if (node < static_cast<int>(live_seq_.size())) return;
     live_seq_.resize(static_cast<std::size_t>(node) + 1, kAbsent);
   }
-  void push(const Entry& e) {
+  void place(const Entry& e) {
     const int b = bucket(e.t);
     buckets_[b].push_back(e);
     if (b > 0) {
-      filled_ |= std::uint64_t{1} << (b - 1);
+      mark(b);
+      if (e.t < earliest_[b]) earliest_[b] = e.t;
     } else {
       std::push_heap(buckets_[0].begin(), buckets_[0].end(), later);
     }
+  }
+  void push(const Entry& e) {
+    place(e);
     settled_ = false;
     if (++entries_ > 4 * live_ + 1024) drop_stale();
   }
@@ -95,11 +119,15 @@ class MeetingQueue {
     for (int b = 0; b < kBuckets; ++b) {
       std::vector<Entry>& bucket = buckets_[b];
       std::size_t kept = 0;
+      earliest_[b] = kNever;
       for (const Entry& e : bucket)
-        if (live(e)) bucket[kept++] = e;
+        if (live(e)) {
+          bucket[kept++] = e;
+          if (e.t < earliest_[b]) earliest_[b] = e.t;
+        }
       bucket.resize(kept);
       entries_ += kept;
-      if (b > 0 && kept == 0) filled_ &= ~(std::uint64_t{1} << (b - 1));
+      if (b > 0 && kept == 0) unmark(b);
     }
     std::make_heap(buckets_[0].begin(), buckets_[0].end(), later);
     settled_ = false;
@@ -118,42 +146,32 @@ class MeetingQueue {
         settled_ = true;
         return;
       }
-      if (filled_ == 0) return;  // nothing live: the caller asked an empty queue
-      const int b = std::countr_zero(filled_) + 1;
-      filled_ &= ~(std::uint64_t{1} << (b - 1));
+      const int b = lowest_filled();
+      if (b == 0) return;  // nothing live: the caller asked an empty queue
+      unmark(b);
       std::vector<Entry>& from = buckets_[b];
       entries_ -= from.size();
-      double earliest = 0.0;
-      bool any = false;
-      for (const Entry& e : from)
-        if (live(e) && (!any || e.t < earliest)) {
-          earliest = e.t;
-          any = true;
-        }
-      if (any) {
-        last_ = earliest;
-        for (const Entry& e : from) {
-          if (!live(e)) continue;
-          const int to = bucket(e.t);
-          buckets_[to].push_back(e);
-          if (to > 0) {
-            filled_ |= std::uint64_t{1} << (to - 1);
-          } else {
-            std::push_heap(buckets_[0].begin(), buckets_[0].end(), later);
-          }
-          ++entries_;
-        }
+      // The earliest entry of the bucket, stale or live, is no later than any live entry
+      // anywhere (every later bucket is later than all of this one): the new origin. The
+      // bucket's entries share its digits from d up, so each falls to a lower digit.
+      last_ = earliest_[b];
+      earliest_[b] = kNever;
+      for (const Entry& e : from) {
+        if (!live(e)) continue;
+        place(e);
+        ++entries_;
       }
       from.clear();
     }
   }
 
   std::vector<Entry> buckets_[kBuckets];
+  double earliest_[kBuckets];            ///< of bucket b > 0: its earliest entry (stale ones too), kNever if empty
+  std::uint64_t filled_[kWords] = {};    ///< bit b − 1 set: bucket b > 0 holds entries
   std::vector<std::uint64_t> live_seq_;  ///< seq of each node's live entry, or kAbsent
   std::size_t live_ = 0;                 ///< nodes with a live entry
-  double last_ = 0.0;                    ///< the last time taken from the top
-  std::uint64_t filled_ = 0;             ///< bit b − 1 set: bucket b > 0 holds entries
   std::size_t entries_ = 0;              ///< entries in all buckets, live and stale
+  double last_ = 0.0;                    ///< the last time taken from the top
   bool settled_ = false;
 };
 
