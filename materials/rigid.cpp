@@ -45,6 +45,14 @@ class Rigid final : public Material {
   /// e + p = ρ00/s²: exact where e and p nearly cancel (far tension).
   [[nodiscard]] double enthalpy_density(Stretch s) const override { return rest_density() * std::exp(-2.0 * s.log()); }
 
+  /// p and e + p from one exponential: e + p = ρ00 (1 + (1/s² − 1)) where 1/s² − 1 > −1/4;
+  /// far in tension, where that sum cancels, e + p from its own exponential.
+  [[nodiscard]] LawValues laws_at(Stretch s) const override {
+    const double q = std::expm1(-2.0 * s.log());
+    const double enthalpy = q > -0.25 ? rest_density() * (1.0 + q) : enthalpy_density(s);
+    return {0.5 * rest_density() * q, enthalpy, 1.0};
+  }
+
   [[nodiscard]] double energy_density(Stretch s) const override {
     return rest_density() * (1.0 + 0.5 * std::expm1(-2.0 * s.log()));
   }

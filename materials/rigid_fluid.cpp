@@ -43,6 +43,13 @@ class RigidFluid final : public Material {
   /// e + p = ρ00/s².
   [[nodiscard]] double enthalpy_density(Stretch s) const override { return rest_density() * std::exp(-2.0 * s.log()); }
 
+  /// p and e + p from one exponential (e + p = ρ00 + 2p = ρ00 (1 + (1/s² − 1)), no cancellation
+  /// for s ≤ 1, the whole range of the fluid).
+  [[nodiscard]] LawValues laws_at(Stretch s) const override {
+    const double q = std::expm1(-2.0 * s.log());
+    return {0.5 * rest_density() * q, rest_density() * (1.0 + q), 1.0};
+  }
+
   [[nodiscard]] double energy_density(Stretch s) const override { return rest_density() + pressure(s); }
 
   /// c_s² = dp/de = 1.
