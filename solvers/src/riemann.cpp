@@ -27,6 +27,10 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kLogStretchHorizon = 700.0;
 /// A material's inverse may round out of its range this close (relative) to one of its limits.
 constexpr double kLimitRoundOff = 1e-12;
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+/// Secant steps a Riemann problem of one material takes from its two-rarefaction guess
+/// before it brackets the root instead.
+constexpr int kSecantSteps = 8;
 
 /// What failed, for the messages of numerical failures.
 constexpr std::string_view kPressureInverse = "the material's inverse stretch_at_pressure failed";
@@ -562,7 +566,33 @@ RiemannSolution solve_riemann(const Material& left_material, const State& left, 
   if (std::isnan(at_start.value))
     return failed(numerical_failure<double>(Status::not_converged, kBeyondDoubles, left_material));
   double z = start;
-  if (at_start.value != 0.0) {
+  bool settled = at_start.value == 0.0;
+  if (!settled && &left_material == &right_material) {
+    // One material: secant steps from the two-rarefaction guess (off by a third-order term
+    // for weak waves; f' = 2 c_s there) reach the root to round-off in a few evaluations.
+    // Any step that leaves the domain, fails or does not settle in kSecantSteps hands over to
+    // the bracketing search below.
+    const double scale = 1.0 + std::abs(left.rapidity) + std::abs(right.rapidity);
+    double z0 = start, g0 = at_start.value;
+    double z1 = z0 - g0 / (2.0 * left_material.sound_speed(Stretch::from_log(z0)));
+    for (int step = 0; step < kSecantSteps && !settled; ++step) {
+      if (!(z1 > d.lo && z1 < d.hi)) break;
+      const Outcome<double> g1 = f(z1);
+      if (!g1.ok() || !std::isfinite(g1.value)) break;
+      const bool still = std::abs(z1 - z0) <= 2.0 * kEps * std::abs(z1) + 1e-300;
+      if (g1.value == 0.0 || still || std::abs(g1.value) <= 4.0 * kEps * scale) {
+        z = z1;
+        settled = true;
+        break;
+      }
+      if (g1.value == g0) break;
+      const double next = z1 - g1.value * (z1 - z0) / (g1.value - g0);
+      z0 = z1;
+      g0 = g1.value;
+      z1 = next;
+    }
+  }
+  if (!settled) {
     // Compress the left star (go down in z) while the left outruns the right, else relax it.
     const double dir = at_start.value > 0.0 ? -1.0 : 1.0;
     const Outcome<Reach> reach = reach_sign(f, start, dir, first_step, dir < 0.0 ? d.lo : d.hi, left_material);
