@@ -37,7 +37,8 @@ constexpr Command kCommands[] = {
      "\n"
      "A run that takes more than a second shows a progress line on stderr when stderr is\n"
      "a terminal. Ctrl-C stops it cleanly: the outputs up to the time reached are written,\n"
-     "with status 'interrupted' (exit 130). A run that reaches solver.max_fronts or\n"
+     "with status 'interrupted' (exit 130); so does SIGTERM (kill, timeout, a batch\n"
+     "system's time limit; exit 143). A run that reaches solver.max_fronts or\n"
      "solver.max_interactions stops the same way with status 'stopped' (exit 1), and says\n"
      "what to change.\n"
      "\n"
@@ -129,7 +130,8 @@ constexpr Command kCommands[] = {
      "in-process on N threads and writes DIR/sweep.csv (one row per case: case, the\n"
      "parameters, status, exit_code, message, the figures, wall_time_s) and sweep.json\n"
      "(every case's parameters). An invalid or inadmissible case is a row with its exit\n"
-     "code and message. Rows are written as cases finish: Ctrl-C stops cleanly (exit 130)\n"
+     "code and message. Rows are written as cases finish: Ctrl-C stops cleanly (exit 130;\n"
+     "SIGTERM: 143)\n"
      "and the same command run again runs only the cases missing from sweep.csv.\n"
      "\n"
      "options:\n"
@@ -148,7 +150,8 @@ const Command* find_command(std::string_view name) {
 constexpr std::string_view kExitStatus =
     "exit status: 0 done, 1 internal failure or a run stopped by a budget, 2 invalid input,\n"
     "             3 valid scene without a classical solution (physically inadmissible),\n"
-    "             130 a run interrupted by Ctrl-C (its outputs up to then are written)\n";
+    "             130 a run interrupted by Ctrl-C, 143 by SIGTERM (its outputs up to then\n"
+    "             are written)\n";
 
 }  // namespace
 

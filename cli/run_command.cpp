@@ -383,28 +383,6 @@ class ProgressLine {
   bool shown_ = false;
 };
 
-/// While in scope, SIGINT (Ctrl-C) asks the solver to stop cleanly (request_interrupt);
-/// a second Ctrl-C ends the process at once, as usual.
-class InterruptHandler {
- public:
-  InterruptHandler() {
-    struct sigaction action {};
-    action.sa_handler = [](int) { request_interrupt(); };
-    sigemptyset(&action.sa_mask);
-    action.sa_flags = SA_RESETHAND;
-    installed_ = ::sigaction(SIGINT, &action, &previous_) == 0;
-  }
-  ~InterruptHandler() {
-    if (installed_) ::sigaction(SIGINT, &previous_, nullptr);
-  }
-  InterruptHandler(const InterruptHandler&) = delete;
-  InterruptHandler& operator=(const InterruptHandler&) = delete;
-
- private:
-  struct sigaction previous_ {};
-  bool installed_ = false;
-};
-
 }  // namespace
 
 int run_command(std::span<const std::string> args, std::ostream& out) {
@@ -438,7 +416,7 @@ int run_command(std::span<const std::string> args, std::ostream& out) {
     // an exception leaves nothing behind.
     StreamingRecorder files(scene, dir);
     WatchingRecorder recorder(scene, files);
-    const InterruptHandler interrupt_handler;
+    const StopOnSignals stop_on_signals;
     std::optional<ProgressLine> progress;
     if (!quiet && ::isatty(STDERR_FILENO) == 1) {
       progress.emplace(scene);
@@ -464,11 +442,12 @@ int run_command(std::span<const std::string> args, std::ostream& out) {
     return kExitStopped;
   }
   if (result.status == to_string(RunStatus::interrupted)) {
-    std::cerr << "interrupted at t = " << number(from_natural(result.t_reached, Dimension::time, scene.units)) << " "
+    std::cerr << "interrupted (" << StopOnSignals::cause()
+              << ") at t = " << number(from_natural(result.t_reached, Dimension::time, scene.units)) << " "
               << unit_symbol(Dimension::time, scene.units)
               << " of t_end = " << number(from_natural(scene.t_end, Dimension::time, scene.units)) << " "
               << unit_symbol(Dimension::time, scene.units) << "; the outputs up to then are in " << dir << "\n";
-    return kExitInterrupted;
+    return StopOnSignals::exit_status();
   }
   return kExitOk;
 }

@@ -25,28 +25,6 @@ namespace rigidity::cli {
 
 namespace {
 
-/// While in scope, SIGINT asks the running cases to stop (request_interrupt); a second
-/// Ctrl-C ends the process at once.
-class SweepInterruptHandler {
- public:
-  SweepInterruptHandler() {
-    struct sigaction action {};
-    action.sa_handler = [](int) { request_interrupt(); };
-    sigemptyset(&action.sa_mask);
-    action.sa_flags = SA_RESETHAND;
-    installed_ = ::sigaction(SIGINT, &action, &previous_) == 0;
-  }
-  ~SweepInterruptHandler() {
-    if (installed_) ::sigaction(SIGINT, &previous_, nullptr);
-  }
-  SweepInterruptHandler(const SweepInterruptHandler&) = delete;
-  SweepInterruptHandler& operator=(const SweepInterruptHandler&) = delete;
-
- private:
-  struct sigaction previous_ {};
-  bool installed_ = false;
-};
-
 #ifdef RIGIDITY_HAVE_MPI
 /// Started by mpirun or srun (which set these), not by hand.
 bool launched_by_mpi() {
@@ -160,7 +138,7 @@ int sweep_command(std::span<const std::string> args, std::ostream& out) {
     // Rank 0 reports the errors; the other ranks only run cases.
     try {
       const Sweep sweep = load_sweep_file(file);
-      const SweepInterruptHandler handler;
+      const StopOnSignals stop_on_signals;
       mpi_worker(sweep, parsed.value("--out").value_or("out/" + std::filesystem::path(file).stem().string()));
     } catch (const std::exception&) {
       return kExitInvalidInput;
@@ -185,7 +163,7 @@ int sweep_command(std::span<const std::string> args, std::ostream& out) {
   SweepOutcome outcome;
   try {
     clear_interrupt();
-    const SweepInterruptHandler handler;
+    const StopOnSignals stop_on_signals;
 #ifdef RIGIDITY_HAVE_MPI
     if (mpi && mpi->size() > 1) {
       outcome = run_sweep(sweep, options, mpi_dispatcher(mpi->size()));
@@ -202,9 +180,10 @@ int sweep_command(std::span<const std::string> args, std::ostream& out) {
   }
   if (terminal) std::cerr << "\n";
   if (outcome.interrupted) {
-    std::cerr << "interrupted: " << outcome.run << " cases run now, " << outcome.skipped << " before, of "
-              << sweep.cases.size() << "; run the same command again to resume (" << options.out_dir << "/sweep.csv)\n";
-    return kExitInterrupted;
+    std::cerr << "interrupted (" << StopOnSignals::cause() << "): " << outcome.run << " cases run now, "
+              << outcome.skipped << " before, of " << sweep.cases.size() << "; run the same command again to resume ("
+              << options.out_dir << "/sweep.csv)\n";
+    return StopOnSignals::exit_status();
   }
   if (!quiet)
     out << sweep.cases.size() << " cases (" << outcome.run << " run, " << outcome.skipped << " already in the table, "

@@ -9,9 +9,10 @@
 ///   rigidity plot RUN_DIR [--out DIR]
 ///
 /// Exit status: 0 done, 1 internal failure or a run stopped by a budget, 2 invalid input,
-/// 3 physically inadmissible, 130 a run interrupted by Ctrl-C.
+/// 3 physically inadmissible, 130 a run interrupted by Ctrl-C (143 by SIGTERM).
 /// This header is private to the executable.
 
+#include <csignal>
 #include <filesystem>
 #include <iosfwd>
 #include <optional>
@@ -94,6 +95,27 @@ int compare_command(std::span<const std::string> args, std::ostream& out);
 int plot_command(std::span<const std::string> args, std::ostream& out);
 int schema_command(std::span<const std::string> args, std::ostream& out);
 int sweep_command(std::span<const std::string> args, std::ostream& out);
+
+/// While in scope, SIGINT (Ctrl-C) and SIGTERM (kill, timeout, a batch system's time
+/// limit) ask the running solve or sweep to stop cleanly (request_interrupt): its outputs up
+/// to then are written, with status interrupted, and no temporary directory is left
+/// behind. A second signal ends the process at once, as usual. Shared by `run` and `sweep`.
+class StopOnSignals {
+ public:
+  StopOnSignals();
+  ~StopOnSignals();
+  StopOnSignals(const StopOnSignals&) = delete;
+  StopOnSignals& operator=(const StopOnSignals&) = delete;
+  /// The exit status of a run those signals stopped: 130 for Ctrl-C, 143 for SIGTERM.
+  [[nodiscard]] static int exit_status();
+  /// "Ctrl-C" or "SIGTERM", for the message.
+  [[nodiscard]] static const char* cause();
+
+ private:
+  static constexpr int kSignals[2] = {SIGINT, SIGTERM};
+  struct sigaction previous_[2]{};
+  bool installed_[2] = {false, false};
+};
 
 // gnuplot, shared by `compare` and `plot` (defined in plot_command.cpp).
 

@@ -242,7 +242,14 @@ pid_t start_rigidity(const fs::path& dir, const std::vector<std::string>& args) 
   return pid;
 }
 
-TEST_F(CliTest, CtrlCStopsARunCleanlyWithTheOutputsSoFarAndExits130) {
+class CliSignalTest : public CliTest {
+ protected:
+  /// Starts a run of minutes, sends `signal` once it is under way, and checks that it stopped
+  /// cleanly: exit `expected_exit`, status interrupted, outputs up to then renamed into place.
+  void expect_signal_stops_run_cleanly(int signal, int expected_exit, const char* cause);
+};
+
+void CliSignalTest::expect_signal_stops_run_cleanly(int signal, int expected_exit, const char* cause) {
   // 300 Hooke segments ringing between bonded walls for 10^6 crossing times: minutes of work.
   std::string scene =
       "name: ringing\n"
@@ -259,7 +266,7 @@ TEST_F(CliTest, CtrlCStopsARunCleanlyWithTheOutputsSoFarAndExits130) {
   const pid_t pid = start_rigidity(dir(), {"run", (dir() / "ringing.yaml").string(), "--out", out.string()});
   ASSERT_GT(pid, 0);
 
-  // Once the run is under way (its temporary directory exists), press Ctrl-C.
+  // Once the run is under way (its temporary directory exists), send the signal.
   const auto started = [&] {
     for (const auto& entry : fs::directory_iterator(dir()))
       if (entry.path().filename().string().rfind("run.tmp-", 0) == 0) return true;
@@ -268,14 +275,14 @@ TEST_F(CliTest, CtrlCStopsARunCleanlyWithTheOutputsSoFarAndExits130) {
   // A second more lets it advance past t = 0 even under a sanitizer on a loaded machine.
   for (int i = 0; i < 200 && !started(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(25));
   std::this_thread::sleep_for(std::chrono::milliseconds(1000));
-  ASSERT_EQ(::kill(pid, SIGINT), 0);
+  ASSERT_EQ(::kill(pid, signal), 0);
   int status = 0;
   ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-  ASSERT_TRUE(WIFEXITED(status)) << "ended by a signal, not cleanly";
-  EXPECT_EQ(WEXITSTATUS(status), 130);
+  ASSERT_TRUE(WIFEXITED(status)) << "ended by the signal, not cleanly";
+  EXPECT_EQ(WEXITSTATUS(status), expected_exit);
 
   const std::string err = read_text(dir() / "stderr");
-  EXPECT_TRUE(contains(err, "interrupted at t = "));
+  EXPECT_TRUE(contains(err, std::string("interrupted (") + cause + ") at t = ")) << err;
   const mini_json::Value summary = mini_json::parse(read_text(out / "summary.json"));
   EXPECT_EQ(summary["status"].string, "interrupted");
   EXPECT_GT(summary["t_reached"].number, 0.0);
@@ -283,6 +290,16 @@ TEST_F(CliTest, CtrlCStopsARunCleanlyWithTheOutputsSoFarAndExits130) {
   const std::string probes = read_text(out / "probes.csv");
   EXPECT_GT(probes.size(), std::string("t,probe,quantity,value\n").size());
   EXPECT_FALSE(started());  // renamed into place
+}
+
+TEST_F(CliSignalTest, CtrlCStopsARunCleanlyWithTheOutputsSoFarAndExits130) {
+  expect_signal_stops_run_cleanly(SIGINT, 130, "Ctrl-C");
+}
+
+TEST_F(CliSignalTest, SigtermStopsARunCleanlyWithTheOutputsSoFarAndExits143) {
+  // What `timeout`, `kill` and a batch system's time limit send: a killed run used to leave
+  // its temporary directory behind (gigabytes of fronts.csv for a long run).
+  expect_signal_stops_run_cleanly(SIGTERM, 143, "SIGTERM");
 }
 
 TEST_F(CliTest, RunRefusesADirectoryThatIsNotARunAsInvalidInputBeforeSolving) {

@@ -57,5 +57,6 @@ inline constexpr int kExitInvalidInput = 2;
 inline constexpr int kExitInadmissible = 3;
 inline constexpr int kExitStopped = 1;        ///< a budget reached; outputs up to the time reached
 inline constexpr int kExitInterrupted = 130;  ///< Ctrl-C; outputs up to the time reached
+inline constexpr int kExitTerminated = 143;   ///< SIGTERM (kill, timeout, a batch time limit); likewise
 
 }  // namespace rigidity
