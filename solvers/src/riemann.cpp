@@ -919,6 +919,26 @@ FrontSpeeds characteristic_speeds(double c, double rapidity, double s, int famil
   return FrontSpeeds{family * c / (s * denominator), numerator / denominator};
 }
 
+void characteristic_speeds_both(const Material& m, const State& state, FrontSpeeds (&speeds)[2]) {
+  const double c = m.sound_speed(state.stretch);
+  if (c == 1.0) {
+    speeds[0] = characteristic_speeds(c, state, -1);
+    speeds[1] = characteristic_speeds(c, state, +1);
+    return;
+  }
+  // As characteristic_speeds(c, rapidity, s, family), e^±φ and s computed once.
+  const double s = state.stretch.value();
+  const double ep = std::exp(state.rapidity), em = 1.0 / ep;
+  for (int k = 0; k < 2; ++k) {
+    const int family = k == 0 ? -1 : +1;
+    const double a = family > 0 ? 1.0 + c : 1.0 - c;
+    const double b = family > 0 ? 1.0 - c : 1.0 + c;
+    const double denominator = 0.5 * (a * ep + b * em);
+    const double numerator = 0.5 * (a * ep - b * em);
+    speeds[k] = FrontSpeeds{family * c / (s * denominator), numerator / denominator};
+  }
+}
+
 double characteristic_speed(const Material& m, const State& state, int family) {
   return characteristic_speeds(m, state, family).lagrangian;
 }

@@ -142,5 +142,37 @@ TEST(Riemann, UltraRelativisticWallImpactKeepsFullPrecision) {
   EXPECT_NEAR(slow.pressure / (v / (1.0 - v)), 1.0, 1e-12);
 }
 
+TEST(CharacteristicSpeeds, BothFamiliesAtOnceAreTheClosedFormOfEach) {
+  // dX/dt = ± c_s / (s γ (1 ± v c_s)) and dx/dt = (v ± c_s)/(1 ± v c_s), written here
+  // directly; both families at once (the tracker's regions) must give what each family alone
+  // gives, to the bit, and both the closed form.
+  const std::shared_ptr<const Material> materials[] = {make("rigid"), make("hooke", 1.0, "wave_speed", 0.5),
+                                                       make("constant_sound_speed", 2.0, "sound_speed", 0.3),
+                                                       make("rigid_fluid")};
+  for (const auto& m : materials) {
+    for (double log_s : {-1.5, -0.2, 0.0}) {
+      for (double phi : {-4.0, -0.3, 0.0, 0.7, 6.0}) {
+        const State st{phi, Stretch::from_log(log_s)};
+        FrontSpeeds both[2];
+        characteristic_speeds_both(*m, st, both);
+        const double c = m->sound_speed(st.stretch), v = std::tanh(phi), s = st.stretch.value(), g = std::cosh(phi);
+        for (int k = 0; k < 2; ++k) {
+          const int family = k == 0 ? -1 : +1;
+          const FrontSpeeds alone = characteristic_speeds(*m, st, family);
+          EXPECT_EQ(both[k].lagrangian, alone.lagrangian) << m->model() << " " << phi << " " << log_s;
+          EXPECT_EQ(both[k].lab, alone.lab) << m->model() << " " << phi << " " << log_s;
+          const double lagrangian = family * c / (s * g * (1.0 + family * v * c));
+          const double lab = (v + family * c) / (1.0 + family * v * c);
+          // The reference loses digits as 1 − |v| c_s → 0; the code's form does not.
+          const double conditioning = 1.0 / (1.0 - std::abs(v) * c);
+          EXPECT_NEAR(both[k].lagrangian, lagrangian, 1e-14 * conditioning * std::abs(lagrangian))
+              << m->model() << " " << phi;
+          EXPECT_NEAR(both[k].lab, lab, 1e-12) << m->model() << " " << phi;
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace rigidity

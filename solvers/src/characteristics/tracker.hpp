@@ -344,7 +344,15 @@ class Tracker {
   /// The characteristic speeds of family `family` in a region's state, remembered in the region.
   const FrontSpeeds& speeds_of(const Region& r, int family) const {
     FrontSpeeds& sp = r.speeds[family > 0 ? 1 : 0];
-    if (std::isnan(sp.lagrangian)) sp = characteristic_speeds(*r.material, r.state, family);
+    if (std::isnan(sp.lagrangian)) {
+      // Both families from the exponentials they share: a region is asked for both more
+      // often than not (each of its two bounding fronts asks for its own family).
+      if (std::isnan(r.speeds[family > 0 ? 0 : 1].lagrangian)) {
+        characteristic_speeds_both(*r.material, r.state, r.speeds);
+      } else {
+        sp = characteristic_speeds(*r.material, r.state, family);
+      }
+    }
     return sp;
   }
   [[nodiscard]] double invariant(const Material& m, const State& st, int family) const {

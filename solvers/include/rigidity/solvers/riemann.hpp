@@ -119,6 +119,9 @@ struct FrontSpeeds {
 /// and with the stretch s itself given.
 [[nodiscard]] FrontSpeeds characteristic_speeds(double sound_speed, const State& state, int family);
 [[nodiscard]] FrontSpeeds characteristic_speeds(double sound_speed, double rapidity, double stretch, int family);
+/// The characteristic speeds of both families in a state, [0] C− and [1] C+, each equal to
+/// characteristic_speeds(material, state, ±1), from the exponentials they share.
+void characteristic_speeds_both(const Material& material, const State& state, FrontSpeeds (&speeds)[2]);
 /// True if the wave of family `family` from `outer` to the star stretch is a shock (Lax:
 /// the characteristics run into it), false if it is a rarefaction fan or a jump of a
 /// linearly degenerate material. Decided on the rarefaction curve: a fan must spread,
