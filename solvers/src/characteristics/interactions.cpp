@@ -234,8 +234,15 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   schedule_meet(na.prev);
   schedule_meets(a, b);
   if (degenerate) {
-    merge_nearby(a, t);
-    merge_nearby(b, t);
+    // The two new fronts sit together; the nearest others are `before` and `after`. A
+    // front's walk for a merge stops at the first one whose distance times the front's
+    // strength exceeds what a merge may cost (merge_nearby): asked here first, as it
+    // usually settles it for both.
+    const double nearest = std::min(X - before.X_at(t), after.X_at(t) - X);
+    if (!(std::min(nodes_[a].strength, nodes_[b].strength) * nearest > merge_)) {
+      merge_nearby(a, t);
+      merge_nearby(b, t);
+    }
   } else {
     merge_neighbours(a, t);
     merge_neighbours(b, t);
