@@ -18,7 +18,8 @@ namespace rigidity::characteristics {
 /// an append; taking the earliest deals the lowest non-empty bucket out into lower ones
 /// from its earliest entry, each entry falling at least one digit each time, a couple of
 /// times over its life (with binary digits, about log₂ of the entries). Bucket 0 (the
-/// last time taken and anything scheduled before it) is a small binary heap.
+/// last time taken and anything scheduled before it) is a queue while its entries arrive
+/// in order (the ties of one instant, by seq) and a binary heap once one does not.
 /// Rescheduling a node appends a new entry and leaves the old one stale (it no longer
 /// carries the node's live `seq`); stale entries are dropped when a scan meets them, and
 /// all at once when they outnumber the live ones three to one, so memory stays bounded by
@@ -39,7 +40,7 @@ class MeetingQueue {
   /// The earliest live meeting. \pre !empty()
   [[nodiscard]] const Entry& top() {
     if (!settled_) settle();
-    return buckets_[0].front();
+    return buckets_[0][head_];
   }
 
   void set(int node, double t, std::uint64_t seq) {
@@ -106,8 +107,23 @@ class MeetingQueue {
       mark(b);
       if (e.t < earliest_[b]) earliest_[b] = e.t;
     } else {
-      std::push_heap(buckets_[0].begin(), buckets_[0].end(), later);
+      add_first(buckets_[0]);
     }
+  }
+  /// Bucket 0 has just received an entry at its back. Entries that come in order (ties of one
+  /// instant arrive by seq) are a queue read from head_; the first that does not makes it a
+  /// binary heap for the rest of its life (until it empties).
+  void add_first(std::vector<Entry>& first) {
+    if (in_order_) {
+      const std::size_t n = first.size();
+      if (n - 1 == head_ || !earlier(first[n - 1], first[n - 2])) return;
+      first.erase(first.begin(), first.begin() + static_cast<std::ptrdiff_t>(head_));
+      head_ = 0;
+      in_order_ = false;
+      std::make_heap(first.begin(), first.end(), later);
+      return;
+    }
+    std::push_heap(first.begin(), first.end(), later);
   }
   void push(const Entry& e) {
     place(e);
@@ -120,16 +136,19 @@ class MeetingQueue {
       std::vector<Entry>& bucket = buckets_[b];
       std::size_t kept = 0;
       earliest_[b] = kNever;
-      for (const Entry& e : bucket)
+      for (std::size_t i = b == 0 ? head_ : 0; i < bucket.size(); ++i) {
+        const Entry e = bucket[i];
         if (live(e)) {
           bucket[kept++] = e;
           if (e.t < earliest_[b]) earliest_[b] = e.t;
         }
+      }
       bucket.resize(kept);
       entries_ += kept;
       if (b > 0 && kept == 0) unmark(b);
     }
-    std::make_heap(buckets_[0].begin(), buckets_[0].end(), later);
+    head_ = 0;  // an ordered queue stays in order, a heap is rebuilt
+    if (!in_order_) std::make_heap(buckets_[0].begin(), buckets_[0].end(), later);
     settled_ = false;
   }
   /// Makes the top of bucket 0 its earliest live entry, refilling bucket 0 from the lowest
@@ -137,15 +156,25 @@ class MeetingQueue {
   void settle() {
     for (;;) {
       std::vector<Entry>& first = buckets_[0];
-      while (!first.empty() && !live(first.front())) {
-        std::pop_heap(first.begin(), first.end(), later);
-        first.pop_back();
-        --entries_;
+      if (in_order_) {
+        while (head_ < first.size() && !live(first[head_])) {
+          ++head_;
+          --entries_;
+        }
+      } else {
+        while (!first.empty() && !live(first.front())) {
+          std::pop_heap(first.begin(), first.end(), later);
+          first.pop_back();
+          --entries_;
+        }
       }
-      if (!first.empty()) {
+      if (head_ < first.size()) {
         settled_ = true;
         return;
       }
+      first.clear();  // empty: refilled below as an ordered queue
+      head_ = 0;
+      in_order_ = true;
       const int b = lowest_filled();
       if (b == 0) return;  // nothing live: the caller asked an empty queue
       unmark(b);
@@ -172,6 +201,8 @@ class MeetingQueue {
   std::size_t live_ = 0;                 ///< nodes with a live entry
   std::size_t entries_ = 0;              ///< entries in all buckets, live and stale
   double last_ = 0.0;                    ///< the last time taken from the top
+  std::size_t head_ = 0;                 ///< bucket 0 in order: its first entry not yet taken
+  bool in_order_ = true;                 ///< bucket 0 is an ordered queue (else a binary heap, head_ = 0)
   bool settled_ = false;
 };
 
