@@ -117,6 +117,12 @@ class Scheme {
 
   // ---- one step -----------------------------------------------------------------------
   [[nodiscard]] double stable_step();
+  /// λ∓ of cell c's state, each time the state is set.
+  void set_speeds(std::size_t c) {
+    const finite_volume::LagrangianSpeeds speeds = finite_volume::lagrangian_speeds(*material_[c], state_[c]);
+    speed_minus_[c] = speeds.minus;
+    speed_plus_[c] = speeds.plus;
+  }
   void reconstruct(double dt);
   void face_fluxes(double t);
   FaceFlux interior_flux(int left_cell, int right_cell, double t);
@@ -188,12 +194,11 @@ class Scheme {
   std::vector<bool> has_psi_free_;
   std::vector<Conserved> u_;
   std::vector<State> state_;
-  std::vector<double> speed_minus_, speed_plus_;  ///< λ∓ (Lagrangian) of the cell state
+  std::vector<double> speed_minus_, speed_plus_;  ///< λ∓ (Lagrangian) of the cell state, set with it
   // A cell whose U no step changed (its two face fluxes equal: a uniform region, common in
   // these scenes of piecewise constant states) keeps its state, speeds and flux as they were.
   std::vector<finite_volume::Recovered> recovered_;  ///< the last recovery of each cell: the next one starts there
   std::vector<char> moved_;                          ///< U changed in the last step: recover (φ, s)
-  std::vector<char> speeds_stale_;                   ///< the state changed since λ∓ were computed
   std::vector<char> flux_stale_;                     ///< the state changed since cell_flux_ was computed
   std::vector<char> clamped_cell_;                   ///< held at the parting stretch with void beyond kVoidFraction
   std::vector<FaceFlux> cell_flux_;                  ///< v and p of the cell state (the flux between equal states)
@@ -284,8 +289,10 @@ void Scheme::build_cells() {
   speed_plus_.assign(n, 0.0);
   moved_.assign(n, 1);
   recovered_.resize(n);
-  for (std::size_t c = 0; c < n; ++c) recovered_[c].state = state_[c];
-  speeds_stale_.assign(n, 1);
+  for (std::size_t c = 0; c < n; ++c) {
+    recovered_[c].state = state_[c];
+    set_speeds(c);
+  }
   flux_stale_.assign(n, 1);
   clamped_cell_.assign(n, 0);
   cell_flux_.assign(n, FaceFlux{});
@@ -325,12 +332,6 @@ void Scheme::build_walls() {
 double Scheme::stable_step() {
   double dt = kInf;
   for (std::size_t c = 0; c < state_.size(); ++c) {
-    if (speeds_stale_[c]) {
-      const finite_volume::LagrangianSpeeds speeds = finite_volume::lagrangian_speeds(*material_[c], state_[c]);
-      speed_minus_[c] = speeds.minus;
-      speed_plus_[c] = speeds.plus;
-      speeds_stale_[c] = 0;
-    }
     const double fastest = std::max(-speed_minus_[c], speed_plus_[c]);
     dt = std::min(dt, width_[c] / fastest);
   }
@@ -429,18 +430,18 @@ FaceFlux Scheme::interior_flux(int a, int c, double t) {
     // No jump: the flux of the state itself (the exact Riemann problem is costly for a
     // genuinely nonlinear material, and uniform regions are common), that of cell a's
     // state kept while it does not change.
-    FaceFlux f;
-    if (order_ == 1 || face_is_cell_[a]) {
-      if (flux_stale_[a]) {
-        cell_flux_[a].velocity_left = cell_flux_[a].velocity_right = std::tanh(left.rapidity);
-        cell_flux_[a].pressure = mL.pressure(left.stretch);
-        flux_stale_[a] = 0;
-      }
-      f = cell_flux_[a];
-    } else {
+    const auto flux_of_state = [&] {
+      FaceFlux f;
       f.velocity_left = f.velocity_right = std::tanh(left.rapidity);
       f.pressure = mL.pressure(left.stretch);
+      return f;
+    };
+    const bool is_cell_state = order_ == 1 || face_is_cell_[a];
+    if (is_cell_state && flux_stale_[a]) {
+      cell_flux_[a] = flux_of_state();
+      flux_stale_[a] = 0;
     }
+    const FaceFlux f = is_cell_state ? cell_flux_[a] : flux_of_state();
     if (f.pressure >= p_min) return f;
   }
   if (scene_.solver.flux == FluxType::hll) {
@@ -614,7 +615,8 @@ void Scheme::recover(double t) {
     }
     state_[i] = r.state;
     recovered_[i] = r;
-    speeds_stale_[i] = flux_stale_[i] = 1;
+    set_speeds(i);
+    flux_stale_[i] = 1;
     clamped_cell_[i] = 0;
     // Clamps of a cell at the parting stretch by round-off (a free surface of a fluid
     // sits exactly there) hold no void worth the name: only a void fraction beyond

@@ -907,16 +907,24 @@ FrontSpeeds characteristic_speeds(double c, const State& state, int family) {
   return characteristic_speeds(c, state.rapidity, state.stretch.value(), family);
 }
 
-FrontSpeeds characteristic_speeds(double c, double rapidity, double s, int family) {
-  if (c == 1.0) return FrontSpeeds{family * std::exp(-family * rapidity - std::log(s)), static_cast<double>(family)};
-  // cosh φ ± c sinh φ = ((1 ± c) e^φ + (1 ∓ c) e^−φ)/2 and sinh φ ± c cosh φ likewise:
-  // free of cancellation for c → 1 and large |φ| (for c = 1 exactly e^±φ).
-  const double ep = std::exp(rapidity), em = 1.0 / ep;
+namespace {
+/// The speeds of family `family` at sound speed c < 1 from e^φ, e^−φ and s:
+/// cosh φ ± c sinh φ = ((1 ± c) e^φ + (1 ∓ c) e^−φ)/2 and sinh φ ± c cosh φ likewise,
+/// free of cancellation for c → 1 and large |φ|.
+FrontSpeeds speeds_from_exponentials(double c, double ep, double em, double s, int family) {
   const double a = family > 0 ? 1.0 + c : 1.0 - c;
   const double b = family > 0 ? 1.0 - c : 1.0 + c;
   const double denominator = 0.5 * (a * ep + b * em);
   const double numerator = 0.5 * (a * ep - b * em);
   return FrontSpeeds{family * c / (s * denominator), numerator / denominator};
+}
+}  // namespace
+
+FrontSpeeds characteristic_speeds(double c, double rapidity, double s, int family) {
+  // For c = 1 exactly e^±φ.
+  if (c == 1.0) return FrontSpeeds{family * std::exp(-family * rapidity - std::log(s)), static_cast<double>(family)};
+  const double ep = std::exp(rapidity);
+  return speeds_from_exponentials(c, ep, 1.0 / ep, s, family);
 }
 
 void characteristic_speeds_both(const Material& m, const State& state, FrontSpeeds (&speeds)[2]) {
@@ -926,17 +934,11 @@ void characteristic_speeds_both(const Material& m, const State& state, FrontSpee
     speeds[1] = characteristic_speeds(c, state, +1);
     return;
   }
-  // As characteristic_speeds(c, rapidity, s, family), e^±φ and s computed once.
+  // e^±φ and s computed once for both.
   const double s = state.stretch.value();
   const double ep = std::exp(state.rapidity), em = 1.0 / ep;
-  for (int k = 0; k < 2; ++k) {
-    const int family = k == 0 ? -1 : +1;
-    const double a = family > 0 ? 1.0 + c : 1.0 - c;
-    const double b = family > 0 ? 1.0 - c : 1.0 + c;
-    const double denominator = 0.5 * (a * ep + b * em);
-    const double numerator = 0.5 * (a * ep - b * em);
-    speeds[k] = FrontSpeeds{family * c / (s * denominator), numerator / denominator};
-  }
+  speeds[0] = speeds_from_exponentials(c, ep, em, s, -1);
+  speeds[1] = speeds_from_exponentials(c, ep, em, s, +1);
 }
 
 double characteristic_speed(const Material& m, const State& state, int family) {
