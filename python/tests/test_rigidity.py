@@ -164,12 +164,14 @@ def test_wall_impact_and_crush_speed():
 
 
 def test_a_solve_releases_the_gil():
-    # 400 Hooke segments ringing between bonded walls: long enough to watch another thread run.
-    segments = [{"length": 0.01, "velocity": 0.2 if k % 2 == 0 else -0.2} for k in range(400)]
+    # Two bars of 200 Hooke segments each ringing between bonded walls: long enough to watch
+    # another thread run (a lone bar would be a lattice piece, solved in milliseconds).
+    segments = [{"length": 0.01, "velocity": 0.2 if k % 2 == 0 else -0.2} for k in range(200)]
     scene = {
         "name": "ringing",
         "materials": {"soft": {"model": "hooke", "wave_speed": 0.5}},
-        "bodies": [{"name": "bar", "material": "soft", "segments": segments}],
+        "bodies": [{"name": "left", "material": "soft", "position": 0.0, "segments": segments},
+                   {"name": "right", "material": "soft", "position": 2.0, "segments": segments}],
         "boundaries": {"left": {"type": "wall", "bonded": True}, "right": {"type": "wall", "bonded": True}},
         "time": {"end": 60.0},
     }

@@ -143,6 +143,7 @@ std::string summary_json(const Scene& scene, const RunResult& result) {
   json.key("stats").begin_object();
   json.key("fronts").integer(result.stats.fronts);
   json.key("interactions").integer(result.stats.interactions);
+  if (result.stats.crossings_unvisited > 0) json.key("crossings_unvisited").integer(result.stats.crossings_unvisited);
   json.key("wall_time_s").number(result.stats.wall_time_s);
   json.key("sampling_time_s").number(result.stats.sampling_time_s);
   json.end_object();

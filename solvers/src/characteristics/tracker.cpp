@@ -196,8 +196,11 @@ RunResult Tracker::run() {
     if (n.kind == NodeKind::front) account_front_end(static_cast<int>(id), t_end);
     record_segment(n, t_end);
   }
-  for (std::size_t piece = 0; piece < light_.size(); ++piece)
-    if (is_light(static_cast<int>(piece))) record_light_segments(static_cast<int>(piece), t_end);
+  for (std::size_t piece = 0; piece < light_.size(); ++piece) {
+    if (!is_light(static_cast<int>(piece))) continue;
+    record_light_segments(static_cast<int>(piece), t_end);
+    result_.stats.crossings_unvisited += lattice_crossings_done(static_cast<int>(piece), t_end);
+  }
   double error_fans_alive = 0.0;
   for (std::size_t id = 0; id < nodes_.size(); ++id) {
     Node& n = nodes_[id];

@@ -7,6 +7,8 @@
 //   coarsening.cpp    merging fronts and the error of fan steps
 //   boundaries.cpp    walls, pistons, gaps, contacts, cracks and the rare events
 //   outputs.cpp       samples, front segments, energy books
+//   light.cpp         pieces whose sound travels at light speed, crossings not visited
+//   lattice.cpp       pieces of any other linearly degenerate material, the same
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -159,13 +161,25 @@ struct Wall {
   }
 };
 
-/// A front of a light piece, kept off the node list: it moves on the lab line
-/// x = intercept + family t from where it started until it reaches the end it runs to.
+/// A front of a light or lattice piece, kept off the node list. In a light piece it moves on
+/// the lab line x = intercept + family t from where it started until it reaches the end it
+/// runs to. In a lattice piece it is a characteristic of the lattice (see LightPiece): `f`
+/// and `p` are its hodograph coordinates.
 struct LightFront {
   double intercept = 0.0;
   double j_ahead = 0.0, j_behind = 0.0;  ///< its own invariant on the side it runs into, and behind it
   double t0 = 0.0, x0 = 0.0;             ///< where it started (its segment in fronts.csv)
+  double f = 0.0, p = 0.0;               ///< lattice pieces: (F, P) of a C+ front, (G, Q) of a C− one
+  /// Fronts of the other family it meets in the piece: those there when it entered, plus those
+  /// its far end emits after, counted there (LightPiece::emitted); this is the first less the second.
+  long meet_base = 0;
   [[nodiscard]] double x_at(double t, int family) const { return intercept + family * t; }
+};
+
+/// A characteristic of a lattice piece: a C+ one with (F, P), a C− one with (G, Q); the two
+/// meet at t = F + G, X = P + Q.
+struct Characteristic {
+  double f = 0.0, p = 0.0;
 };
 
 /// A piece of a material whose sound travels at light speed and which carries any tension
@@ -180,11 +194,37 @@ struct LightFront {
 /// (resolve_group, as for any piece), and what that problem emits into the piece is taken off
 /// it again (absorb_light). States between are built from the two invariants where asked for
 /// (samples, totals), exactly as a crossing builds its star.
+///
+/// A lattice piece is the same for any other linearly degenerate material (`hooke`): the C+
+/// speed in the labels, λ+, depends on J− alone and λ− on J+ alone, so between fronts of the
+/// other family a front moves on a straight line in (X, t) whose slope only the other
+/// family's fronts change. The fronts then form a lattice whose every vertex is known
+/// without visiting it: the C+ front i and the C− front j meet at t = F_i + G_j and
+/// X = P_i + Q_j (the hodograph of a linearly degenerate system, in which t and X are sums of
+/// a function of J+ and one of J−). Two C+ fronts with J+ = a between them have
+/// P₂ − P₁ = λ−(a) (F₂ − F₁) (a C− front crosses the strip between them at λ−(a)), two C−
+/// fronts with J− = b between them Q₂ − Q₁ = λ+(b) (G₂ − G₁), and a front's place at time t
+/// is on the line through its last vertex with its own speed there. Fronts keep the (F, P)
+/// or (G, Q) they enter with; an arrival takes O(1), a sample the walk of the regions. The
+/// piece goes back to the node list (dissolve_lattice) when its fronts outnumber its cap or
+/// the invariants it holds could meet in a state the material cannot take (a bar crushed
+/// by a crossing is found at that crossing on the node list). Only runs that do not write
+/// fronts.csv make lattice pieces: their fronts' paths are polylines with a vertex at every
+/// crossing, which that file would have to hold.
 struct LightPiece {
   int store = kNone;
   std::deque<LightFront> plus;   ///< C+ fronts, the one nearest the right end first
   std::deque<LightFront> minus;  ///< C− fronts, the one nearest the left end first
   std::uint32_t version = 0;     ///< of its arrival events
+  bool lattice = false;          ///< a lattice piece (else light)
+  /// Lattice pieces: the C+ characteristic right of every C+ front (the last to reach the
+  /// right end, or one through the right end when the piece was made), and the C−
+  /// characteristic left of every C− front.
+  Characteristic ref_plus, ref_minus;
+  /// Lattice pieces: the extremes of J+ and J− the piece has held since it was made.
+  double j_plus_min = kInf, j_plus_max = -kInf, j_minus_min = kInf, j_minus_max = -kInf;
+  /// Fronts emitted into the piece at its left end ([0], C+) and at its right end ([1], C−).
+  long emitted[2] = {0, 0};
 };
 
 /// Events other than nodes meeting (those live in MeetingQueue).
@@ -336,6 +376,24 @@ class Tracker {
   void absorb_light(int piece, double t);
   bool merge_light(int piece, int family, double t);
   [[nodiscard]] State light_state(const Material& m, double j_plus, double j_minus) const;
+  // ---- lattice pieces (lattice.cpp) ------------------------------------------------------
+  bool make_lattice(int piece, double t);
+  [[nodiscard]] double lattice_arrival(int piece, int family) const;
+  void lattice_enter(int piece, int family, int id, double t);
+  void note_invariants(LightPiece& lp, const Material& m, const State& s) const;
+  [[nodiscard]] bool lattice_safe(const LightPiece& lp, const Material& m) const;
+  void dissolve_lattice(int piece, double t);
+  /// A front of a lattice piece at time t, in the order walk_lattice meets them.
+  struct LatticeFront {
+    double X;
+    int family;
+    const LightFront* front;
+  };
+  /// The fronts of a lattice piece at time t, left to right, with the state left of each:
+  /// visit(front, state left of it); returns the state next to the right end.
+  template <class Visit>
+  void walk_lattice_fronts(int piece, double t, Visit&& visit) const;
+  long lattice_crossings_done(int piece, double t) const;
   /// Ψ of a region's state, remembered in the region.
   double psi_of(const Region& r) {
     if (std::isnan(r.psi)) r.psi = memo_->psi(*r.material, r.state.stretch);
@@ -358,8 +416,9 @@ class Tracker {
   [[nodiscard]] double invariant(const Material& m, const State& st, int family) const {
     return st.rapidity + family * memo_->psi(m, st.stretch);
   }
-  /// The regions of a light piece at time t, left to right: visit(x_a, x_b, X_a, X_b, state)
-  /// (labels from the left end's, by the label density of each region).
+  /// The regions of a light or lattice piece at time t, left to right: visit(x_a, x_b, X_a,
+  /// X_b, state, last) (a light piece's labels from the left end's, by the label density of
+  /// each region; a lattice piece's lab positions so).
   template <class Visit>
   void walk_light(int piece, double t, Visit&& visit) const;
   void record_light_segments(int piece, double t);
@@ -530,12 +589,65 @@ class Tracker {
 };
 
 template <class Visit>
+void Tracker::walk_lattice_fronts(int piece, double t, Visit&& visit) const {
+  const LightPiece& lp = light_[piece];
+  const Node& left = nodes_[pieces_[piece].left_end];
+  const Material& m = *left.right.material;
+  const double X_right = nodes_[pieces_[piece].right_end].X_at(t);
+  double X = left.X_at(t);
+  State state = left.right.state;  // next to the left end: exactly as stored
+  double j_plus = invariant(m, state, +1), j_minus = invariant(m, state, -1);
+  FrontSpeeds speeds[2];  // [0] C−, [1] C+ in `state`
+  characteristic_speeds_both(m, state, speeds);
+  Characteristic met = lp.ref_minus;  // the last C− characteristic left of the walk
+  // C+ fronts from the leftmost (the back of their queue), C− from the leftmost (the front).
+  auto p = lp.plus.rbegin();
+  auto q = lp.minus.begin();
+  while (p != lp.plus.rend() || q != lp.minus.end()) {
+    // A C− front is left of a C+ front once their vertex is past: F + G <= t.
+    const bool minus = q != lp.minus.end() && (p == lp.plus.rend() || p->f + q->f <= t);
+    double X_next;
+    if (minus) {
+      // On the line through its vertex with the nearest C+ characteristic right of it.
+      const Characteristic c = p != lp.plus.rend() ? Characteristic{p->f, p->p} : lp.ref_plus;
+      X_next = c.p + q->p + speeds[0].lagrangian * (t - c.f - q->f);
+    } else {
+      X_next = p->p + met.p + speeds[1].lagrangian * (t - p->f - met.f);
+    }
+    X_next = std::clamp(X_next, X, X_right);
+    visit(LatticeFront{X_next, minus ? -1 : +1, minus ? &*q : &*p}, state);
+    X = X_next;
+    if (minus) {
+      j_minus = q->j_behind;
+      met = Characteristic{q->f, q->p};
+      ++q;
+    } else {
+      j_plus = p->j_ahead;
+      ++p;
+    }
+    state = light_state(m, j_plus, j_minus);
+    characteristic_speeds_both(m, state, speeds);
+  }
+}
+
+template <class Visit>
 void Tracker::walk_light(int piece, double t, Visit&& visit) const {
   const LightPiece& lp = light_[piece];
   const Node& left = nodes_[pieces_[piece].left_end];
   const Node& right = nodes_[pieces_[piece].right_end];
   const Material& m = *left.right.material;
   const double x_left = left.x_at(t), x_right = right.x_at(t);
+  if (lp.lattice) {
+    double x = x_left, X = left.X_at(t);
+    walk_lattice_fronts(piece, t, [&](const LatticeFront& f, const State& state) {
+      const double x_next = x + (f.X - X) * label_density(state);
+      visit(x, x_next, X, f.X, state, false);
+      x = x_next;
+      X = f.X;
+    });
+    visit(x, x_right, X, right.X_at(t), nodes_[lp.store].right.state, true);  // next to the right end: as stored
+    return;
+  }
   double x = x_left, X = left.X_at(t);
   State state = left.right.state;  // next to the left end: exactly as stored
   double j_plus = invariant(m, state, +1), j_minus = invariant(m, state, -1);

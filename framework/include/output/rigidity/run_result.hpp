@@ -50,6 +50,9 @@ struct RunStats {
   long interactions = 0;         ///< Riemann problems solved
   double wall_time_s = 0.0;      ///< solving only: parsing, sampling and writing apart
   double sampling_time_s = 0.0;  ///< evaluating probes and snapshots and handing them to the recorder
+  /// Crossings of fronts inside light and lattice pieces: solved exactly without being
+  /// visited (each piece knows where its fronts cross), so not among the interactions.
+  long crossings_unvisited = 0;
 };
 
 struct ProbeSample {
