@@ -116,14 +116,15 @@ double time_in(const std::string& message) {
 }
 
 TEST(LatticePieces, ACrossingThatWouldCrushTheBarIsFoundWhereTheNodeListFindsIt) {
-  // A piston at 0.3c into a Hooke bar of V = 0.6 whose segments already ring: the waves it
-  // sends, crossing the bar's own, need a state the material cannot take. The lattice piece
-  // sees the invariants it now holds could meet there and hands its fronts back to the node
-  // list, which finds the crossing.
+  // Two pistons start at t = 0.3 into a ringing Hooke bar of V = 0.6 at 0.46c from both
+  // sides: each wave alone leaves Ψ = artanh 0.46 ≈ 0.5 below Ψ_max = artanh 0.6 ≈ 0.69, but
+  // where they cross the star would need Ψ ≈ 1. The lattice piece sees that the invariants it
+  // now holds could meet there and hands its fronts back to the node list, which finds the
+  // crossing in the middle of the bar.
   std::string messages[2];
   for (int fronts = 0; fronts < 2; ++fronts) {
-    const std::string yaml =
-        hooke_bar(30, 0.2, "{type: wall}", "{type: piston, velocity: -0.3}", 2.5, 1e-6, fronts == 1);
+    const std::string yaml = hooke_bar(30, 0.01, "{type: piston, table: [[0.0, 0.0], [0.3, 0.46]]}",
+                                       "{type: piston, table: [[0.0, 0.0], [0.3, -0.46]]}", 1.3, 1e-6, fronts == 1);
     try {
       (void)solve(load_scene_string(yaml, "<test>"));
     } catch (const InadmissibleError& e) {

@@ -149,5 +149,35 @@ outputs: {fronts: true}
   EXPECT_NEAR(c.momentum_final - c.momentum_initial, c.wall_impulse, 1e-6);
 }
 
+TEST(Regressions, APistonThatSpeedsUpCatchesTheBarThatLeftIt) {
+  // A bar moving at 0.01c leaves a piston at rest at t = 0 (a separation); at t = 0.3 the
+  // piston starts at 0.2c and must catch the bar's left end at x = 0.003 + 0.01 (t − 0.3),
+  // t = 0.3 + 0.003 / 0.19, before any wave from the far wall reaches that end (t > 1.6),
+  // and push it on. The separation used to drop the piston's pending change of speed with
+  // the contact's events: the piston stood still and the bar ran on through where it was.
+  const RunResult r = solve(load_scene_string(R"(
+name: piston_catches_up
+materials: {soft: {model: hooke, wave_speed: 0.6}}
+bodies: [{name: bar, material: soft, position: 0, length: 1, velocity: 0.01}]
+boundaries:
+  left: {type: piston, table: [[0.0, 0.0], [0.3, 0.2]]}
+  right: {type: wall}
+time: {end: 1.3}
+)",
+                                              "<test>"));
+  ASSERT_EQ(r.status, "ok");
+  const double t_contact = 0.3 + 0.003 / 0.19;
+  int contacts = 0;
+  for (const RunEvent& e : r.events) {
+    if (e.kind != "contact" || e.x > 0.5) continue;
+    ++contacts;
+    EXPECT_NEAR(e.t, t_contact, 1e-12);
+    EXPECT_NEAR(e.x, 0.01 * t_contact, 1e-12);
+  }
+  EXPECT_EQ(contacts, 1);
+  ASSERT_EQ(r.bodies.size(), 1u);
+  EXPECT_NEAR(r.bodies[0].x_left, 0.01 * t_contact + 0.2 * (1.3 - t_contact), 1e-12);  // on the piston
+}
+
 }  // namespace
 }  // namespace rigidity

@@ -18,8 +18,8 @@ constexpr std::size_t kLightMergeReach = 16;
 State Tracker::light_state(const Material& m, double j_plus, double j_minus) const {
   const Solved<Stretch> s = memo_->stretch_at_psi(m, 0.5 * (j_plus - j_minus));
   if (!s.ok())
-    throw NumericalError(
-        "a state between light-speed fronts could not be found (Ψ = " + number(0.5 * (j_plus - j_minus)) + ")");
+    throw NumericalError("a state between the fronts of a light or lattice piece could not be found (Ψ = " +
+                         number(0.5 * (j_plus - j_minus)) + ")");
   return State{0.5 * (j_plus + j_minus), s.value};
 }
 
