@@ -341,7 +341,8 @@ Sweep load_sweep_file(const std::string& path) {
         if ((parts[0] == "t_end") != (parts.size() == 1)) bad("not a scalar of summary.json");
         if (parts[0] != "t_end" && parts.size() != 2) bad("not a scalar of summary.json");
         // stats and conservation have fixed fields; the solver's depend on its method.
-        static const std::vector<std::string> stats = {"fronts", "interactions", "wall_time_s", "sampling_time_s"};
+        static const std::vector<std::string> stats = {"fronts", "interactions", "crossings_unvisited", "wall_time_s",
+                                                       "sampling_time_s"};
         static const std::vector<std::string> conservation = {
             "energy_initial", "energy_final", "energy_dissipated", "wall_work",        "momentum_initial",
             "momentum_final", "wall_impulse", "energy_droplets",   "momentum_droplets"};
@@ -477,6 +478,7 @@ std::optional<double> figure(const std::string& path, const Scene& scene, const 
   } else if (parts[0] == "stats") {
     if (parts[1] == "fronts") value = static_cast<double>(result.stats.fronts);
     if (parts[1] == "interactions") value = static_cast<double>(result.stats.interactions);
+    if (parts[1] == "crossings_unvisited") value = static_cast<double>(result.stats.crossings_unvisited);
     if (parts[1] == "wall_time_s") value = result.stats.wall_time_s;
     if (parts[1] == "sampling_time_s") value = result.stats.sampling_time_s;
   } else if (parts[0] == "conservation") {

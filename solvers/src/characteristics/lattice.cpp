@@ -157,10 +157,12 @@ long Tracker::lattice_crossings_done(int piece, double t) const {
     });
     return done;
   }
+  // C+ fronts from the rightmost, the C− fronts right of each counted from the right end.
+  long ahead = 0;
+  auto q = lp.minus.rbegin();
   for (const LightFront& p : lp.plus) {
     const double x = p.x_at(t, +1);
-    const long ahead =
-        std::count_if(lp.minus.begin(), lp.minus.end(), [&](const LightFront& q) { return q.x_at(t, -1) > x; });
+    for (; q != lp.minus.rend() && q->x_at(t, -1) > x; ++q) ++ahead;
     done += p.meet_base + lp.emitted[1] - ahead;
   }
   return done;
