@@ -164,7 +164,8 @@ struct Wall {
 /// A front of a light or lattice piece, kept off the node list. In a light piece it moves on
 /// the lab line x = intercept + family t from where it started until it reaches the end it
 /// runs to. In a lattice piece it is a characteristic of the lattice (see LightPiece): `f`
-/// and `p` are its hodograph coordinates.
+/// and `p` are its hodograph coordinates, and `intercept` the label it started from at t0
+/// (where it is at that instant exactly, not to the round-off of its coordinates).
 struct LightFront {
   double intercept = 0.0;
   double j_ahead = 0.0, j_behind = 0.0;  ///< its own invariant on the side it runs into, and behind it
@@ -607,7 +608,10 @@ void Tracker::walk_lattice_fronts(int piece, double t, Visit&& visit) const {
     // A C− front is left of a C+ front once their vertex is past: F + G <= t.
     const bool minus = q != lp.minus.end() && (p == lp.plus.rend() || p->f + q->f <= t);
     double X_next;
-    if (minus) {
+    const LightFront& f = minus ? *q : *p;
+    if (t == f.t0) {
+      X_next = f.intercept;  // where it entered, this instant
+    } else if (minus) {
       // On the line through its vertex with the nearest C+ characteristic right of it.
       const Characteristic c = p != lp.plus.rend() ? Characteristic{p->f, p->p} : lp.ref_plus;
       X_next = c.p + q->p + speeds[0].lagrangian * (t - c.f - q->f);
