@@ -534,11 +534,11 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     }
     require_solved(sol, m, t, x, scene_.units);
     if (sol.parted && e.attach == Attach::boundary) {
-      const int side = e.partner;
-      Wall& w = walls_[side];
+      const int wall = e.partner;
+      Wall& w = walls_[wall];
       w.attached = kNone;
       ++w.version;            // events of the contact are stale,
-      schedule_piston(side);  // but not a piston's next change of speed
+      schedule_piston(wall);  // but not a piston's next change of speed
       set_attach(end, Attach::free, kNone, t);
       event(t, "separation", x, {piece_body_name(e.piece)});
     }
