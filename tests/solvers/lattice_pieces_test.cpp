@@ -174,7 +174,9 @@ TEST(LatticePieces, RandomBarsBetweenAnyEndsAreWhatTheNodeListMakesOfThem) {
     ASSERT_EQ(outcome[0], "ok");
     for (const RunResult& r : results)
       for (const auto& [name, value] : r.solver_numbers)
-        if (name == "fronts_merged") ASSERT_EQ(value, 0.0);
+        if (name == "fronts_merged") {
+          ASSERT_EQ(value, 0.0);
+        }
     expect_same_samples(results[0], results[1]);
     EXPECT_EQ(results[0].stats.interactions + results[0].stats.crossings_unvisited, results[1].stats.interactions);
     ++compared;
