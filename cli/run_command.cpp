@@ -13,6 +13,7 @@
 #include <iostream>
 #include <optional>
 #include <ostream>
+#include <string>
 
 #include "rigidity/cli.hpp"
 #include "rigidity/errors.hpp"
@@ -96,8 +97,11 @@ void print_summary(std::ostream& out, const Scene& scene, const RunResult& resul
   for (const auto& [name, value] : result.solver_numbers) numbers.push_back(name + " " + number(value, 6));
   const std::string method = result.solver.empty() ? std::string("?") : result.solver;
   out << "solver: " << method << (numbers.empty() ? "" : " (" + join(numbers, ", ") + ")") << "; "
-      << result.stats.fronts << " fronts, " << result.stats.interactions << " interactions, solved in "
-      << number(result.stats.wall_time_s, 3) << " s"
+      << result.stats.fronts << " fronts, " << result.stats.interactions << " interactions, "
+      << (result.stats.crossings_unvisited > 0
+              ? std::to_string(result.stats.crossings_unvisited) + " crossings known without a visit, "
+              : "")
+      << "solved in " << number(result.stats.wall_time_s, 3) << " s"
       << (result.stats.sampling_time_s >= 0.001
               ? " (outputs sampled in " + number(result.stats.sampling_time_s, 3) + " s)"
               : "")
