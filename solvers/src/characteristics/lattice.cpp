@@ -79,11 +79,11 @@ bool Tracker::make_lattice(int piece, double t) {
     if (f.family > 0) {
       last_plus = place(last_plus, last_minus, minus_speed, plus_speed, X, t);
       lp.plus.push_front(LightFront{X, invariant(m, f.right.state, +1), invariant(m, before.state, +1), t, x,
-                                    last_plus.f, last_plus.p, minus_total - minus_seen});
+                                    last_plus.f, last_plus.p, minus_total - minus_seen, minus_speed});
     } else {
       last_minus = place(last_minus, last_plus, plus_speed, minus_speed, X, t);
       lp.minus.push_back(LightFront{X, invariant(m, before.state, -1), invariant(m, f.right.state, -1), t, x,
-                                    last_minus.f, last_minus.p, 0});
+                                    last_minus.f, last_minus.p, 0, speeds_of(f.right, +1).lagrangian});
       ++minus_seen;
     }
   }
@@ -130,12 +130,13 @@ void Tracker::lattice_enter(int piece, int family, int id, double t) {
     const Characteristic c =
         place(prev, lp.ref_minus, speeds_of(right, -1).lagrangian, speeds_of(right, +1).lagrangian, X, t);
     lp.plus.push_back(LightFront{X, invariant(m, right.state, +1), invariant(m, left.state, +1), t, x, c.f, c.p,
-                                 static_cast<long>(lp.minus.size()) - lp.emitted[1]});
+                                 static_cast<long>(lp.minus.size()) - lp.emitted[1], speeds_of(left, -1).lagrangian});
   } else {
     const Characteristic prev = lp.minus.empty() ? lp.ref_minus : of(lp.minus.back());
     const Characteristic c =
         place(prev, lp.ref_plus, speeds_of(left, +1).lagrangian, speeds_of(left, -1).lagrangian, X, t);
-    lp.minus.push_back(LightFront{X, invariant(m, left.state, -1), invariant(m, right.state, -1), t, x, c.f, c.p, 0});
+    lp.minus.push_back(LightFront{X, invariant(m, left.state, -1), invariant(m, right.state, -1), t, x, c.f, c.p, 0,
+                                  speeds_of(right, +1).lagrangian});
   }
   ++lp.emitted[family > 0 ? 0 : 1];
 }

@@ -174,6 +174,10 @@ struct LightFront {
   /// Fronts of the other family it meets in the piece: those there when it entered, plus those
   /// its far end emits after, counted there (LightPiece::emitted); this is the first less the second.
   long meet_base = 0;
+  /// Lattice pieces: the speed in the labels the other family has in the strip behind it
+  /// (λ− where J+ is j_behind, for a C+ front; λ+ where J− is j_behind, for a C− one): what
+  /// places the fronts of the other family that last met it, fixed for its life.
+  double behind_speed = 0.0;
   [[nodiscard]] double x_at(double t, int family) const { return intercept + family * t; }
 };
 
@@ -598,9 +602,10 @@ void Tracker::walk_lattice_fronts(int piece, double t, Visit&& visit) const {
   double X = left.X_at(t);
   State state = left.right.state;  // next to the left end: exactly as stored
   double j_plus = invariant(m, state, +1), j_minus = invariant(m, state, -1);
-  FrontSpeeds speeds[2];  // [0] C−, [1] C+ in `state`
-  characteristic_speeds_both(m, state, speeds);
   Characteristic met = lp.ref_minus;  // the last C− characteristic left of the walk
+  // λ+ in the strip right of `met`, and λ− right of every C+ front (next to the right end).
+  double plus_speed = speeds_of(left.right, +1).lagrangian;
+  const double minus_speed_at_right = speeds_of(nodes_[lp.store].right, -1).lagrangian;
   // C+ fronts from the leftmost (the back of their queue), C− from the leftmost (the front).
   auto p = lp.plus.rbegin();
   auto q = lp.minus.begin();
@@ -612,11 +617,13 @@ void Tracker::walk_lattice_fronts(int piece, double t, Visit&& visit) const {
     if (t == f.t0) {
       X_next = f.intercept;  // where it entered, this instant
     } else if (minus) {
-      // On the line through its vertex with the nearest C+ characteristic right of it.
-      const Characteristic c = p != lp.plus.rend() ? Characteristic{p->f, p->p} : lp.ref_plus;
-      X_next = c.p + q->p + speeds[0].lagrangian * (t - c.f - q->f);
+      // On the line through its vertex with the nearest C+ characteristic right of it, at λ−
+      // of the strip behind that one.
+      const bool plus_left = p != lp.plus.rend();
+      const Characteristic c = plus_left ? Characteristic{p->f, p->p} : lp.ref_plus;
+      X_next = c.p + q->p + (plus_left ? p->behind_speed : minus_speed_at_right) * (t - c.f - q->f);
     } else {
-      X_next = p->p + met.p + speeds[1].lagrangian * (t - p->f - met.f);
+      X_next = p->p + met.p + plus_speed * (t - p->f - met.f);
     }
     X_next = std::clamp(X_next, X, X_right);
     visit(LatticeFront{X_next, minus ? -1 : +1, minus ? &*q : &*p}, state);
@@ -624,13 +631,13 @@ void Tracker::walk_lattice_fronts(int piece, double t, Visit&& visit) const {
     if (minus) {
       j_minus = q->j_behind;
       met = Characteristic{q->f, q->p};
+      plus_speed = q->behind_speed;
       ++q;
     } else {
       j_plus = p->j_ahead;
       ++p;
     }
     state = light_state(m, j_plus, j_minus);
-    characteristic_speeds_both(m, state, speeds);
   }
 }
 
