@@ -130,7 +130,8 @@ void Tracker::lattice_enter(int piece, int family, int id, double t) {
     const Characteristic c =
         place(prev, lp.ref_minus, speeds_of(right, -1).lagrangian, speeds_of(right, +1).lagrangian, X, t);
     lp.plus.push_back(LightFront{X, invariant(m, right.state, +1), invariant(m, left.state, +1), t, x, c.f, c.p,
-                                 static_cast<long>(lp.minus.size()) - lp.emitted[1], speeds_of(left, -1).lagrangian});
+                                 static_cast<long>(lp.minus.size()) - lp.minus_emitted,
+                                 speeds_of(left, -1).lagrangian});
   } else {
     const Characteristic prev = lp.minus.empty() ? lp.ref_minus : of(lp.minus.back());
     const Characteristic c =
@@ -138,7 +139,7 @@ void Tracker::lattice_enter(int piece, int family, int id, double t) {
     lp.minus.push_back(LightFront{X, invariant(m, left.state, -1), invariant(m, right.state, -1), t, x, c.f, c.p, 0,
                                   speeds_of(right, +1).lagrangian});
   }
-  ++lp.emitted[family > 0 ? 0 : 1];
+  if (family < 0) ++lp.minus_emitted;
 }
 
 /// Crossings the C+ fronts now in a light or lattice piece have passed there: those with the
@@ -153,7 +154,7 @@ long Tracker::lattice_crossings_done(int piece, double t) const {
       if (f.family < 0) {
         ++minus_left;
       } else {
-        done += f.front->meet_base + lp.emitted[1] - (static_cast<long>(lp.minus.size()) - minus_left);
+        done += f.front->meet_base + lp.minus_emitted - (static_cast<long>(lp.minus.size()) - minus_left);
       }
     });
     return done;
@@ -164,7 +165,7 @@ long Tracker::lattice_crossings_done(int piece, double t) const {
   for (const LightFront& p : lp.plus) {
     const double x = p.x_at(t, +1);
     for (; q != lp.minus.rend() && q->x_at(t, -1) > x; ++q) ++ahead;
-    done += p.meet_base + lp.emitted[1] - ahead;
+    done += p.meet_base + lp.minus_emitted - ahead;
   }
   return done;
 }

@@ -129,14 +129,11 @@ void Tracker::arrive(int piece, int family, double t) {
   const LightFront f = family > 0 ? lp.plus.front() : lp.minus.front();
   (family > 0 ? lp.plus : lp.minus).pop_front();
   --light_fronts_;  // a front on the node list again
-  if (family > 0) result_.stats.crossings_unvisited += f.meet_base + lp.emitted[1];
+  if (family > 0) result_.stats.crossings_unvisited += f.meet_base + lp.minus_emitted;
   const int id = new_node(NodeKind::front, piece);
   Node& n = nodes_[id];
   n.family = family;
   n.front_kind = FrontKind::contact;
-  n.t0 = f.t0;
-  n.x0 = f.x0;
-  n.dxdt = family;
   n.X0 = nodes_[end].X_at(t);
   if (lp.lattice) {
     // Its vertex with the end: the characteristic of its family the end has last met.
@@ -147,6 +144,10 @@ void Tracker::arrive(int piece, int family, double t) {
     n.x0 = nodes_[end].x_at(t);
     n.dxdt = speeds.lab;
     n.dXdt = speeds.lagrangian;
+  } else {
+    n.t0 = f.t0;  // its lab line from where it started: one segment in fronts.csv
+    n.x0 = f.x0;
+    n.dxdt = family;
   }
   n.born = f.t0;
   n.strength = std::abs(f.j_behind - f.j_ahead);
@@ -189,20 +190,20 @@ void Tracker::absorb_light(int piece, double t) {
     // The C+ fronts from the one farthest from the left end, the C− from the one farthest from the right end.
     for (auto id = plus.rbegin(); id != plus.rend(); ++id) lattice_enter(piece, +1, *id, t);
     for (const int id : minus) lattice_enter(piece, -1, id, t);
-  }
-  for (const int id : lp.lattice ? std::vector<int>{} : plus) {
-    const Node& f = nodes_[id];
-    const double x = f.x_at(t);
-    lp.plus.push_back(LightFront{x - t, invariant(m, f.right.state, +1), invariant(m, nodes_[f.prev].right.state, +1),
-                                 t, x, 0.0, 0.0, static_cast<long>(lp.minus.size()) - lp.emitted[1]});
-    ++lp.emitted[0];
-  }
-  for (const int id : lp.lattice ? std::vector<int>{} : minus) {
-    const Node& f = nodes_[id];
-    const double x = f.x_at(t);
-    lp.minus.push_back(
-        LightFront{x + t, invariant(m, nodes_[f.prev].right.state, -1), invariant(m, f.right.state, -1), t, x});
-    ++lp.emitted[1];
+  } else {
+    for (const int id : plus) {
+      const Node& f = nodes_[id];
+      const double x = f.x_at(t);
+      lp.plus.push_back(LightFront{x - t, invariant(m, f.right.state, +1), invariant(m, nodes_[f.prev].right.state, +1),
+                                   t, x, 0.0, 0.0, static_cast<long>(lp.minus.size()) - lp.minus_emitted});
+    }
+    for (const int id : minus) {
+      const Node& f = nodes_[id];
+      const double x = f.x_at(t);
+      lp.minus.push_back(
+          LightFront{x + t, invariant(m, nodes_[f.prev].right.state, -1), invariant(m, f.right.state, -1), t, x});
+      ++lp.minus_emitted;
+    }
   }
   // The store holds the state next to the right end only once the C− fronts have read the
   // state ahead of the first of them from it.

@@ -172,7 +172,7 @@ struct LightFront {
   double t0 = 0.0, x0 = 0.0;             ///< where it started (its segment in fronts.csv)
   double f = 0.0, p = 0.0;               ///< lattice pieces: (F, P) of a C+ front, (G, Q) of a C− one
   /// Fronts of the other family it meets in the piece: those there when it entered, plus those
-  /// its far end emits after, counted there (LightPiece::emitted); this is the first less the second.
+  /// its far end emits after, counted there (LightPiece::minus_emitted); this is the first less the second.
   long meet_base = 0;
   /// Lattice pieces: the speed in the labels the other family has in the strip behind it
   /// (λ− where J+ is j_behind, for a C+ front; λ+ where J− is j_behind, for a C− one): what
@@ -228,8 +228,8 @@ struct LightPiece {
   Characteristic ref_plus, ref_minus;
   /// Lattice pieces: the extremes of J+ and J− the piece has held since it was made.
   double j_plus_min = kInf, j_plus_max = -kInf, j_minus_min = kInf, j_minus_max = -kInf;
-  /// Fronts emitted into the piece at its left end ([0], C+) and at its right end ([1], C−).
-  long emitted[2] = {0, 0};
+  /// C− fronts its right end has emitted into the piece.
+  long minus_emitted = 0;
 };
 
 /// Events other than nodes meeting (those live in MeetingQueue).
