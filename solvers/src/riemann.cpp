@@ -855,7 +855,8 @@ Solved<double> hugoniot_rapidity(const State& outer, const JumpLaws& at_outer, S
   const double u2 = dp * y;
   if (!(u2 >= 0.0) || !(dp + w * u2 != 0.0) || ((dp + w * u2) > 0.0) != (dp > 0.0))
     return Solved<double>::failure(Status::out_of_range);
-  const double relative = std::asinh(std::sqrt(u2));
+  const double sinh_relative = std::sqrt(u2);
+  const double relative = std::asinh(sinh_relative);
   // A compression (Ψ grows as s falls, c_s > 0) slows the state behind a C− shock (it moves
   // against the family's direction).
   const double direction = star.log() < outer.stretch.log() ? family : -family;
@@ -864,18 +865,41 @@ Solved<double> hugoniot_rapidity(const State& outer, const JumpLaws& at_outer, S
   // The lab frame: g(φ) = [p][τ] + [v][M] = 0 with τ = s/cosh φ, v = tanh φ, M = w s sinh φ.
   const double phi0 = outer.rapidity;
   const Hyperbolic outer_hyperbolic = hyperbolic(phi0);
-  const double ch0 = outer_hyperbolic.cosh;
-  const double tau0 = s0 / ch0, momentum0 = at_outer.enthalpy * s0 * outer_hyperbolic.sinh;
+  const double ch0 = outer_hyperbolic.cosh, sh0 = outer_hyperbolic.sinh;
+  const double tau0 = s0 / ch0, momentum0 = at_outer.enthalpy * s0 * sh0;
+  // Newton in ρ = φ − φ0, with sinh and cosh of ρ and of d = −ρ/2 at hand. Those of the
+  // closed-form start come from sinh ρ = √u² by the half-angle formulas; a step δ of Newton
+  // (third order in a weak shock's strength, then its square) moves them by the addition
+  // theorems with sinh δ and cosh δ from their series, exact to round-off for |δ| < 1e-4,
+  // so that a weak shock is settled without another exponential. sinh φ and cosh φ follow
+  // from those of φ0 and ρ, without cancellation while |ρ| < 1/2 (cosh φ ≥ cosh φ0 e^−|ρ|);
+  // a stronger shock, or a larger step, takes them from exponentials.
+  Hyperbolic rho{direction * sinh_relative, std::sqrt(1.0 + u2)};
+  Hyperbolic d{0.0, std::sqrt(0.5 * (1.0 + rho.cosh))};
+  d.sinh = -0.5 * rho.sinh / d.cosh;
+  const auto shift = [](Hyperbolic& a, double e) {  // the angle a − e, for |e| < 1e-4
+    const double se = e * (1.0 + e * e / 6.0), ce = 1.0 + 0.5 * e * e;
+    const double sinh = a.sinh * ce - a.cosh * se, cosh = a.cosh * ce - a.sinh * se;
+    a.sinh = sinh;
+    a.cosh = cosh;
+  };
+  bool by_addition = relative < 0.5;
   bool settled = false;
   for (int step = 0; step < 8 && !settled; ++step) {
-    const Hyperbolic at_phi = hyperbolic(phi);
-    const double ch = at_phi.cosh, sh = at_phi.sinh;
-    // With d = (φ0 − φ)/2 (sinh d and cosh d from e^d − 1): cosh φ0 / cosh φ − 1 =
-    // 2 sinh(φ + d) sinh d / cosh φ =: x, sinh(φ − φ0) = −2 sinh d cosh d, and
-    // [τ] = τ0 ((s/s0)(1 + x) − 1) = τ0 (r + (1 + r) x) with r = s/s0 − 1, each without
-    // cancellation.
-    const Hyperbolic at_d = hyperbolic(0.5 * (phi0 - phi));
-    const double sd = at_d.sinh, cd = at_d.cosh;
+    double ch = 0.0, sh = 0.0;
+    if (by_addition) {
+      ch = ch0 * rho.cosh + sh0 * rho.sinh;
+      sh = sh0 * rho.cosh + ch0 * rho.sinh;
+    } else {
+      const Hyperbolic at_phi = hyperbolic(phi);
+      ch = at_phi.cosh;
+      sh = at_phi.sinh;
+      d = hyperbolic(0.5 * (phi0 - phi));
+    }
+    const double sd = d.sinh, cd = d.cosh;
+    // With d = (φ0 − φ)/2: cosh φ0 / cosh φ − 1 = 2 sinh(φ + d) sinh d / cosh φ =: x,
+    // sinh(φ − φ0) = −2 sinh d cosh d, and [τ] = τ0 ((s/s0)(1 + x) − 1) = τ0 (r + (1 + r) x)
+    // with r = s/s0 − 1, each without cancellation.
     const double cosh_excess = 2.0 * (sh * cd + ch * sd) * sd / ch;
     const double dtau = tau0 * (ratio_m1 + (1.0 + ratio_m1) * cosh_excess);
     const double dv = -2.0 * sd * cd / (ch0 * ch);
@@ -890,6 +914,13 @@ Solved<double> hugoniot_rapidity(const State& outer, const JumpLaws& at_outer, S
     // closed-form start is off by a third-order term only).
     settled = delta * delta <=
               4.0 * std::numeric_limits<double>::epsilon() * (1.0 + std::abs(phi)) * std::max(relative, 1e-300);
+    if (by_addition && !settled) {
+      by_addition = std::abs(delta) < 1e-4;
+      if (by_addition) {
+        shift(rho, delta);
+        shift(d, -0.5 * delta);
+      }
+    }
   }
   if (!settled || !std::isfinite(phi)) return Solved<double>::failure(Status::not_converged);
   return Solved<double>{phi, Status::ok};
