@@ -105,9 +105,16 @@ int Tracker::merge_neighbours(int id, double t) {
     const double strength_q = std::abs(wave_strength(m, nodes_[p].right.state, R.state, family));
     const int kept = strength_p >= strength_q ? p : q;
     const int gone = kept == p ? q : p;
+    // The merged front carries both fronts' errors, what their fan steps booked, and the merge's.
+    double carried = nodes_[p].carried + nodes_[q].carried + best_cost;
     for (int n : {p, q}) {
       account_front_end(n, t);
-      if (nodes_[n].front_kind == FrontKind::rarefaction) error_fans_ += fan_error(n, t);
+      if (nodes_[n].front_kind == FrontKind::rarefaction) {
+        const double booked = fan_error(n, t);
+        error_fans_ += booked;
+        carried += booked;
+      }
+      nodes_[n].carried = 0.0;
     }
     error_merges_ += best_cost;
     ++merged_;
@@ -119,6 +126,7 @@ int Tracker::merge_neighbours(int id, double t) {
     kill_node(gone, t);
     set_front(kept, family, kind, m, L.state, R.state, t, X, x, off, t,
               std::abs(wave_strength(m, L.state, R.state, family)));
+    nodes_[kept].carried = carried;
     if (nodes_[kept].prev != kNone) schedule_meet(nodes_[kept].prev);
     schedule_meet(kept);
     id = kept;
@@ -228,6 +236,8 @@ bool Tracker::merge_across(int p, int q, double t) {
   const int start = extend_left ? left_of_p : left_of_p;
   double X_cursor = segments_.front().a;
   double x_cursor = extend_left ? nodes_[left_of_p].x_at(t) : nodes_[p].x_at(t);
+  const double carried = nodes_[p].carried + nodes_[q].carried + cost;
+  nodes_[p].carried = nodes_[q].carried = 0.0;
   kill_node(p, t);
   kill_node(q, t);
   const int merged = new_node(NodeKind::front, nodes_[start].piece);
@@ -238,6 +248,7 @@ bool Tracker::merge_across(int p, int q, double t) {
   mn.front_kind = FrontKind::contact;
   mn.born = t;
   mn.strength = std::abs(j_after_q - j_before);
+  mn.carried = carried;
   int cursor = start;
   const auto advance = [&](double X, const State& st) {
     x_cursor += (X - X_cursor) * label_density(st);

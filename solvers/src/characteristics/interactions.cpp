@@ -175,15 +175,22 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   // Fan steps keep their age through the interaction when they leave as the only step of
   // their family; otherwise the error they carry is booked now.
   double born[2] = {t, t};
+  // The errors the outgoing waves carry ([0] C−, [1] C+): each incoming front's goes on with
+  // the wave of its family (two of one family merge into one), with what its fan step booked.
+  double carried[2] = {0.0, 0.0};
   for (Node* n : {&na, &nb}) {
-    if (n->front_kind != FrontKind::rarefaction) continue;
     const int k = n->family > 0 ? 1 : 0;
+    carried[k] += n->carried;
+    n->carried = 0.0;
+    if (n->front_kind != FrontKind::rarefaction) continue;
     const bool continues =
         kinds[k] == FrontKind::rarefaction && !(held_back && k == 0) && (na.family != nb.family || degenerate);
     if (continues && born[k] == t) {
       born[k] = n->born;
     } else {
-      error_fans_ += fan_error(static_cast<int>(n - nodes_.data()), t);
+      const double booked = fan_error(static_cast<int>(n - nodes_.data()), t);
+      error_fans_ += booked;
+      carried[k] += booked;
     }
   }
 
@@ -202,6 +209,8 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     account_front_end(a, t);  // its shock books close while its neighbours are still its own
     link(keep_before, b);
     kill_node(a, t);
+    error_lost_ += carried[0];  // the C− wave held back (its strength is booked above)
+    nodes_[b].carried = carried[1];
     set_front(b, +1, kinds[1], *m, left, right, t, X, x, off_curve[1], born[1], strength_plus);
     schedule_meet(keep_before);
     schedule_meet(b);
@@ -231,6 +240,8 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   set_front(b, +1, kinds[1], *m, star, right, t, X, x, off_curve[1], born[1], strength_plus,
             degenerate ? &star_region.speeds[1] : nullptr, laws_plus);
   na.right = star_region;
+  na.carried = carried[0];
+  nb.carried = carried[1];
   schedule_meet(na.prev);
   schedule_meets(a, b);
   if (degenerate) {
@@ -497,10 +508,24 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   // fan error goes on growing); otherwise the error it carries is booked now.
   int steps_in[2] = {0, 0};
   double steps_born[2] = {0.0, 0.0}, steps_error[2] = {0.0, 0.0};
+  // The errors the incoming fronts carry, and the rate at which they sweep L1 (strength ×
+  // speed in the labels): shared among the outgoing waves below.
+  double carried_in = 0.0, sweep_in = 0.0, released = 0.0;
+  int fronts_in = 0;
   for (int id : group) {
     Node& n = nodes_[id];
-    close_defect(n, t);
-    if (n.kind != NodeKind::front) continue;
+    const double defect = close_defect(n, t);
+    if (n.kind != NodeKind::front) {
+      released += defect;  // a wave held back here leaves now, late by as much
+      continue;
+    }
+    carried_in += n.carried;
+    n.carried = 0.0;
+    // A front back from a light piece has its lab line but no label speed: that of its
+    // family where it runs (the same on both sides of a linearly degenerate jump).
+    const double label_speed = n.dXdt != 0.0 ? n.dXdt : speeds_of(n.right, n.family).lagrangian;
+    sweep_in += n.strength * std::abs(label_speed);
+    ++fronts_in;
     account_front_end(id, t);
     if (n.front_kind == FrontKind::rarefaction) {
       const int f = n.family > 0 ? 1 : 0;
@@ -602,8 +627,10 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
       nodes_[out.front()].born = steps_born[f];
     } else {
       error_fans_ += steps_error[f];
+      carried_in += steps_error[f];
     }
   }
+  share_carried(carried_in, sweep_in, fronts_in, released);
 
   // Link: [before] − fronts [centre] + fronts [right state holder].
   // The region right of the C− fronts is the left star state, left of the C+ fronts the right star state.
@@ -723,6 +750,34 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   // follow their ends.
   if (is_light(left_piece)) absorb_light(left_piece, t);
   if (right_piece != left_piece && is_light(right_piece)) absorb_light(right_piece, t);
+}
+
+/// The errors the fronts of a group carried in (and what their fan steps booked there) go on
+/// with the waves it emitted, each taking a share in proportion to the rate at which it
+/// sweeps L1, strength × |dX/dt|. A lone wave that splits (a transmission and a reflection
+/// at an interface or a contact, a reflection at an end) hands on its error times the ratio
+/// of the outgoing rates to its own: the linear scattering of a small error, measured rather
+/// than assumed, so that an error carried into a softer body grows as the wave does. Where
+/// several fronts meet, the error does not shrink with their cancellation (the ratio is at
+/// least 1); a wave that sets off far stronger ones (a front that makes an interface part)
+/// hands on at most kMaxScattering times its error. A wave held back at the node (see
+/// hold_back_weak_wave) leaves now, late: the error it booked while held goes on with the
+/// outgoing waves as well. With no wave out, it all stays in the bound as it was.
+void Tracker::share_carried(double carried_in, double sweep_in, int fronts_in, double released) {
+  if (carried_in == 0.0 && released == 0.0) return;
+  double sweep_out = 0.0;
+  for (const std::vector<int>* out : {&emitted_left_, &emitted_right_})
+    for (int id : *out) sweep_out += nodes_[id].strength * std::abs(nodes_[id].dXdt);
+  if (!(sweep_out > 0.0) || !std::isfinite(sweep_out)) {
+    error_lost_ += carried_in;  // a held-back wave's error stays in error_defects_
+    return;
+  }
+  error_defects_released_ += released;
+  double ratio = sweep_in > 0.0 ? std::min(sweep_out / sweep_in, kMaxScattering) : 1.0;
+  if (fronts_in != 1) ratio = std::max(ratio, 1.0);
+  const double per_sweep = (carried_in * ratio + released) / sweep_out;
+  for (const std::vector<int>* out : {&emitted_left_, &emitted_right_})
+    for (int id : *out) nodes_[id].carried += per_sweep * nodes_[id].strength * std::abs(nodes_[id].dXdt);
 }
 
 /// Bressan's idea at an interface or a contact, where a wave arriving splits in two: when

@@ -64,8 +64,10 @@ void Tracker::make_light(double t) {
       if (f.family > 0) {
         lp.plus.push_back(
             LightFront{x - t, invariant(*m, right, +1), invariant(*m, left, +1), t, x, 0.0, 0.0, minus_right});
+        lp.plus.back().carried = f.carried;
       } else {
         lp.minus.push_front(LightFront{x + t, invariant(*m, left, -1), invariant(*m, right, -1), t, x});
+        lp.minus.front().carried = f.carried;
         ++minus_right;
       }
     }
@@ -73,7 +75,8 @@ void Tracker::make_light(double t) {
     long fronts = 0;
     for (int n = nodes_[pc.left_end].next; n != pc.right_end;) {
       const int next = nodes_[n].next;
-      kill_node(n, t);  // records its segment up to t
+      nodes_[n].carried = 0.0;  // its front in the queues carries it
+      kill_node(n, t);          // records its segment up to t
       ++fronts;
       n = next;
     }
@@ -151,6 +154,7 @@ void Tracker::arrive(int piece, int family, double t) {
   }
   n.born = f.t0;
   n.strength = std::abs(f.j_behind - f.j_ahead);
+  n.carried = f.carried;
   if (family > 0) {
     // ahead of it: the state next to the right end; behind it: J+ it brings, J− there.
     const Region ahead = nodes_[lp.store].right;
@@ -196,20 +200,26 @@ void Tracker::absorb_light(int piece, double t) {
       const double x = f.x_at(t);
       lp.plus.push_back(LightFront{x - t, invariant(m, f.right.state, +1), invariant(m, nodes_[f.prev].right.state, +1),
                                    t, x, 0.0, 0.0, static_cast<long>(lp.minus.size()) - lp.minus_emitted});
+      lp.plus.back().carried = f.carried;
     }
     for (const int id : minus) {
       const Node& f = nodes_[id];
       const double x = f.x_at(t);
       lp.minus.push_back(
           LightFront{x + t, invariant(m, nodes_[f.prev].right.state, -1), invariant(m, f.right.state, -1), t, x});
+      lp.minus.back().carried = f.carried;
       ++lp.minus_emitted;
     }
   }
   // The store holds the state next to the right end only once the C− fronts have read the
   // state ahead of the first of them from it.
   if (!minus.empty()) nodes_[lp.store].right = nodes_[minus.back()].right;
-  for (const int id : plus) kill_node(id, t);
-  for (const int id : minus) kill_node(id, t);
+  for (const std::vector<int>* taken : {&plus, &minus}) {
+    for (const int id : *taken) {
+      nodes_[id].carried = 0.0;  // its front in the queues carries it
+      kill_node(id, t);
+    }
+  }
   link(pc.left_end, lp.store);
   link(lp.store, pc.right_end);
   live_fronts_ += static_cast<long>(plus.size() + minus.size());
@@ -332,6 +342,7 @@ bool Tracker::merge_light(int piece, int family, double t) {
   if (cost > merge_light_) return false;
   error_merges_ += cost;
   ++merged_;
+  older.carried += newer.carried + cost;
   if (want_fronts_ && t > older.t0) {
     recorder_.front(FrontSegment{older.t0, older.x0, t, x_old, FrontKind::contact, family});
   }

@@ -68,6 +68,10 @@ constexpr double kMinPiecesPerBody = 8.0;
 constexpr double kMergeCeiling = 1e4;
 /// Growth of an L1 error between the time it is made and t_end allowed for in the bound.
 constexpr double kStability = 2.0;
+/// The most an error carried by one wave may grow where that wave splits (see
+/// Tracker::share_carried): a transmission into a softer or slower body grows it by up to
+/// about twice the ratio of the label speeds.
+constexpr double kMaxScattering = 8.0;
 /// A crossing in a genuinely nonlinear body may leave its star this far (× tolerance², in
 /// rapidity) from its waves' curves, booked on both fronts as they move on: the crossings of
 /// a run at the front cap then book a small fraction of its budget, and most weak crossings
@@ -127,6 +131,10 @@ struct Node {
   int piece = kNone;
   double born = 0.0;      ///< fronts: when the wave it carries was created (fan error grows from then)
   double strength = 0.0;  ///< fronts: |jump of the family's own invariant| (J+ for C+, J− for C−)
+  /// Fronts: the L1 error made on the wave it carries (merges, fan steps), travelling with
+  /// it: a crossing hands it on with the wave, a split shares it among the outgoing waves
+  /// (Tracker::share_carried), a merge adds the two fronts' and its own cost.
+  double carried = 0.0;
   /// Interfaces and contacts: a wave weaker than the threshold that this node did not emit
   /// (its strength times its speed, the L1 error it adds per unit time), since when, and
   /// the most it can add (strength times the natural length it could sweep).
@@ -180,6 +188,7 @@ struct LightFront {
   /// (λ− where J+ is j_behind, for a C+ front; λ+ where J− is j_behind, for a C− one): what
   /// places the fronts of the other family that last met it, fixed for its life.
   double behind_speed = 0.0;
+  double carried = 0.0;  ///< the L1 error its wave carries (Node::carried)
   [[nodiscard]] double x_at(double t, int family) const { return intercept + family * t; }
 };
 
@@ -293,7 +302,11 @@ class Tracker {
   /// (account_front_end), while its neighbours are still its own.
   void kill_node(int id, double t) {
     Node& n = nodes_[id];
-    if (n.kind == NodeKind::front) --live_fronts_;
+    if (n.kind == NodeKind::front) {
+      --live_fronts_;
+      error_lost_ += n.carried;  // a caller that hands the error on has taken it already
+      n.carried = 0.0;
+    }
     close_defect(n, t);
     record_segment(n, t);
     meetings_.erase(id);
@@ -457,10 +470,13 @@ class Tracker {
   double total_length_ = 1.0;           ///< natural length of all bodies: the error bound is per unit of it
   double error_defects_ = 0.0;          ///< L1 error of waves held back at interfaces and contacts
   double error_fans_ = 0.0;             ///< L1 error of fan steps whose fans are gone
-  long suppressed_ = 0;                 ///< weak waves held back
-  double merge_base_ = 0.0;             ///< largest L1 error (strength × distance) of a merge while fronts are few
-  double merge_ = 0.0;                  ///< the same now: raised while the live fronts exceed front_cap_
-  double front_cap_ = 0.0;              ///< per body
+  /// Errors fronts carried when they ended without a wave to hand them to (a wave that
+  /// vanished, a droplet's fronts); they stay in the bound as they were.
+  double error_lost_ = 0.0;
+  long suppressed_ = 0;      ///< weak waves held back
+  double merge_base_ = 0.0;  ///< largest L1 error (strength × distance) of a merge while fronts are few
+  double merge_ = 0.0;       ///< the same now: raised while the live fronts exceed front_cap_
+  double front_cap_ = 0.0;   ///< per body
   /// The thresholds that set how finely the waves are resolved: the tolerance, unless the
   /// droplets of a spray have booked more than it (see rebalance).
   int places_ = 1;  ///< interfaces and contacts among which weak_ shares its budget
@@ -556,11 +572,17 @@ class Tracker {
   long merged_ = 0;
   long live_fronts_max_ = 0;
 
-  void close_defect(Node& n, double t) {
-    if (n.defect_rate <= 0.0) return;
-    error_defects_ += std::min(n.defect_rate * (t - n.defect_since), n.defect_cap);
+  /// Books the error of the node's defect up to t (a wave held back, a front off its curve)
+  /// and returns it.
+  double close_defect(Node& n, double t) {
+    if (n.defect_rate <= 0.0) return 0.0;
+    const double booked = std::min(n.defect_rate * (t - n.defect_since), n.defect_cap);
+    error_defects_ += booked;
     n.defect_rate = 0.0;
+    return booked;
   }
+  /// The part of error_defects_ that waves released late took on (share_carried).
+  double error_defects_released_ = 0.0;
   /// The L1 error of a rarefaction step at time t: the exact fan spreads the step's jump σ
   /// over |Δλ| (t − born) in X (no more than the piece), which a jump in its middle misses
   /// by σ/4 of that width on average.
@@ -568,6 +590,7 @@ class Tracker {
   double piece_length(int piece) const {
     return nodes_[pieces_[piece].right_end].X0 - nodes_[pieces_[piece].left_end].X0;  // ends move with the material
   }
+  void share_carried(double carried_in, double sweep_in, int fronts_in, double released);
   void hold_back_weak_wave(RiemannSolution& sol, const Region& left, const Region& right, int holder,
                            double min_pressure, double t);
 
