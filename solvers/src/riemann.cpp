@@ -980,12 +980,14 @@ double characteristic_lab_speed(const Material& m, const State& state, int famil
   return characteristic_speeds(m, state, family).lab;
 }
 
-LabelJump label_jump(const State& a, const State& b) {
+LabelJump label_jump(const State& a, const State& b) { return label_jump(a, hyperbolic(a.rapidity), b); }
+
+LabelJump label_jump(const State& a, const Hyperbolic& at_a, const State& b) {
   // cosh and sinh of φa from one exponential, those of h from another, and
   // sinh((φa + φb)/2) = sinh(φa + h) from both: three evaluations of the exponential
   // where seven hyperbolic functions would be.
   LabelJump jump;
-  jump.left = hyperbolic(a.rapidity);
+  jump.left = at_a;
   const Hyperbolic half = hyperbolic(0.5 * (b.rapidity - a.rapidity));
   jump.scaled_v = 2.0 * half.sinh * half.cosh;
   const double r = std::expm1(b.stretch.log() - a.stretch.log());
@@ -1006,7 +1008,7 @@ Solved<double> shock_dissipation_rate(const Material& m, const State& left, Jump
   const double phi_l = left.rapidity, phi_r = right.rapidity;
   const double s_l = jump.left_stretch;
   const Hyperbolic& at_l = jump.left;
-  const Hyperbolic at_r = hyperbolic(phi_r);
+  const Hyperbolic at_r = jump.right_known ? jump.right : hyperbolic(phi_r);
   const double ch_l = at_l.cosh, ch_r = at_r.cosh;
   const double v_l = velocity_of(phi_l, at_l), v_r = velocity_of(phi_r, at_r);
   at_left.at(m, left.stretch);

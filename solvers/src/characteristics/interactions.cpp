@@ -235,10 +235,19 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   // The laws at the outer states and the star, where the crossing's wave curves asked for them.
   const JumpLaws laws_minus[2] = {outer_laws[0], star_laws};
   const JumpLaws laws_plus[2] = {star_laws, outer_laws[1]};
+  // cosh and sinh of the three rapidities, for the label jumps of the two fronts and their
+  // shocks' dissipation: the outer regions keep theirs for the crossings they meet next.
+  const Hyperbolic* at[3] = {nullptr, nullptr, nullptr};
+  if (!degenerate) {
+    star_region.hyperbolic = hyperbolic(star.rapidity);
+    at[0] = &hyperbolic_of(before.right);
+    at[1] = &star_region.hyperbolic;
+    at[2] = &hyperbolic_of(nb.right);
+  }
   set_front(a, -1, kinds[0], *m, left, star, t, X, x, off_curve[0], born[0], strength_minus,
-            degenerate ? &star_region.speeds[0] : nullptr, laws_minus);
+            degenerate ? &star_region.speeds[0] : nullptr, laws_minus, at[0], at[1]);
   set_front(b, +1, kinds[1], *m, star, right, t, X, x, off_curve[1], born[1], strength_plus,
-            degenerate ? &star_region.speeds[1] : nullptr, laws_plus);
+            degenerate ? &star_region.speeds[1] : nullptr, laws_plus, at[1], at[2]);
   na.right = star_region;
   na.carried = carried[0];
   nb.carried = carried[1];
@@ -270,7 +279,8 @@ bool Tracker::interact_in_place(int a, int b, double t) {
 /// `laws` (p and e + p of left and right) where the caller has them.
 void Tracker::set_front(int id, int family, FrontKind kind, const Material& m, const State& left, const State& right,
                         double t, double X, double x, double off_hugoniot, double born, double strength,
-                        const FrontSpeeds* known, const JumpLaws* laws) {
+                        const FrontSpeeds* known, const JumpLaws* laws, const Hyperbolic* at_left,
+                        const Hyperbolic* at_right) {
   Node& n = nodes_[id];
   n.strength = strength;
   n.dissipation = std::numeric_limits<double>::quiet_NaN();
@@ -280,7 +290,11 @@ void Tracker::set_front(int id, int family, FrontKind kind, const Material& m, c
   } else if (kind == FrontKind::contact) {
     speeds = memo_->speeds(m, right, family);
   } else {
-    const LabelJump jump = label_jump(left, right);
+    LabelJump jump = at_left != nullptr ? label_jump(left, *at_left, right) : label_jump(left, right);
+    if (at_right != nullptr) {
+      jump.right = *at_right;
+      jump.right_known = true;
+    }
     speeds = label_jump_speeds(m, left, right, family, jump);
     if (kind == FrontKind::shock) {
       const Solved<double> rate =

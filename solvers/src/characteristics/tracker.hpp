@@ -112,6 +112,7 @@ struct Region {
   mutable double psi = std::numeric_limits<double>::quiet_NaN();
   mutable FrontSpeeds speeds[2] = {{std::numeric_limits<double>::quiet_NaN(), 0.0},
                                    {std::numeric_limits<double>::quiet_NaN(), 0.0}};  ///< [0] C−, [1] C+
+  mutable Hyperbolic hyperbolic{0.0, 0.0, 1.0, 1.0};  ///< of its rapidity (cosh 0 until asked for)
 };
 
 /// A node of a piece's list: a front, a material interface or an end. Between
@@ -371,7 +372,13 @@ class Tracker {
   double merge_cost(int p, int q, double t, double* X_merged) const;
   void set_front(int id, int family, FrontKind kind, const Material& m, const State& left, const State& right, double t,
                  double X, double x, double off_hugoniot, double born, double strength,
-                 const FrontSpeeds* known = nullptr, const JumpLaws* laws = nullptr);
+                 const FrontSpeeds* known = nullptr, const JumpLaws* laws = nullptr,
+                 const Hyperbolic* at_left = nullptr, const Hyperbolic* at_right = nullptr);
+  /// hyperbolic() of a region's rapidity, evaluated once per region.
+  static const Hyperbolic& hyperbolic_of(const Region& r) {
+    if (r.hyperbolic.cosh == 0.0) r.hyperbolic = hyperbolic(r.state.rapidity);
+    return r.hyperbolic;
+  }
   void resolve_group(std::vector<int>& group, double t);
   void wave(const Material& m, const State& outer, const State& star, int family, WaveStates& w);
   void emit_fronts(const Material& m, const WaveStates& w, int family, int piece, double t, double X, double x,

@@ -210,10 +210,14 @@ struct LabelJump {
   double stretch_ratio_m1 = 0.0;  ///< r = sb/sa − 1
   double scaled_v = 0.0;          ///< [v] cosh φa cosh φb
   double scaled_tau = 0.0;        ///< [τ] cosh φa cosh φb
+  Hyperbolic right;               ///< of φb, where right_known (a caller had it at hand)
+  bool right_known = false;
   /// m = −[v]/[τ] (infinite or NaN where [τ] vanishes).
   [[nodiscard]] double speed() const { return -scaled_v / scaled_tau; }
 };
 [[nodiscard]] LabelJump label_jump(const State& a, const State& b);
+/// label_jump with hyperbolic(a.rapidity) at hand.
+[[nodiscard]] LabelJump label_jump(const State& a, const Hyperbolic& at_a, const State& b);
 
 /// The energy a shock removes per unit time and area, D = m [E] − [p v] (SPEC §1), between its
 /// left and right states (one material, joined by the label and momentum jump conditions; m
