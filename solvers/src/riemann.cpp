@@ -832,6 +832,37 @@ bool wave_is_shock(const Material& m, const State& outer, Stretch star, int fami
   return family < 0 ? !(outer_speed < star_speed) : !(star_speed < outer_speed);
 }
 
+Solved<State> centred_fan_state(const Material& m, int family, double j_other, double psi_a, double psi_b,
+                                double speed) {
+  const auto state_at = [&](double psi) -> Outcome<State> {
+    const Solved<Stretch> s = m.stretch_at_psi(psi);
+    if (!s.ok()) return numerical_failure<State>(s.status, "the stretch of a state in a fan", m);
+    return succeeded(State{family > 0 ? j_other + psi : j_other - psi, s.value});
+  };
+  const auto mismatch = [&](double psi) -> Outcome<double> {
+    const Outcome<State> st = state_at(psi);
+    if (!st.ok()) return st.as<double>();
+    return succeeded(characteristic_speeds(m, st.value, family).lagrangian - speed);
+  };
+  const double lo = std::min(psi_a, psi_b), hi = std::max(psi_a, psi_b);
+  Outcome<double> psi = succeeded(lo);
+  if (lo < hi) {
+    const Outcome<double> at_lo = mismatch(lo), at_hi = mismatch(hi);
+    if (!at_lo.ok() || !at_hi.ok()) return Solved<State>::failure(Status::not_converged);
+    if (at_lo.value == 0.0 || at_hi.value == 0.0) {
+      psi = succeeded(at_lo.value == 0.0 ? lo : hi);
+    } else if ((at_lo.value < 0.0) == (at_hi.value < 0.0)) {
+      return Solved<State>::failure(Status::out_of_range);  // the speed is not the fan's
+    } else {
+      psi = find_root(mismatch, lo, hi, m);
+    }
+  }
+  if (!psi.ok()) return Solved<State>::failure(psi.status);
+  const Outcome<State> st = state_at(psi.value);
+  if (!st.ok()) return Solved<State>::failure(st.status);
+  return Solved<State>{st.value, Status::ok};
+}
+
 Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch star, int family) {
   JumpLaws at_outer, at_star;
   return hugoniot_rapidity(outer, at_outer.at(m, outer.stretch), star, at_star.at(m, star), family);

@@ -282,6 +282,7 @@ void Tracker::set_front(int id, int family, FrontKind kind, const Material& m, c
                         const FrontSpeeds* known, const JumpLaws* laws, const Hyperbolic* at_left,
                         const Hyperbolic* at_right) {
   Node& n = nodes_[id];
+  leave_fan(n);
   n.strength = strength;
   n.dissipation = std::numeric_limits<double>::quiet_NaN();
   FrontSpeeds speeds;
@@ -436,6 +437,32 @@ void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, in
     live_fronts_max_ = std::max(live_fronts_max_, ++live_fronts_);
     ++result_.stats.fronts;
   }
+  if (!w.shock && !m.linearly_degenerate() && !out.empty()) {
+    // A new centred fan: its steps stand for it until one of them interacts.
+    int id;
+    if (!free_fans_.empty()) {
+      id = free_fans_.back();
+      free_fans_.pop_back();
+    } else {
+      id = static_cast<int>(fans_.size());
+      fans_.emplace_back();
+    }
+    CentredFan& f = fans_[id];
+    const State& outer = w.states.front();
+    const State& star = w.states.back();
+    f.t0 = t;
+    f.X0 = X;
+    f.x0 = x;
+    f.family = family;
+    f.material = &m;
+    f.psi_a = m.riemann_psi(outer.stretch);
+    f.psi_b = m.riemann_psi(star.stretch);
+    f.j_other = family < 0 ? outer.rapidity + f.psi_a : outer.rapidity - f.psi_a;
+    f.speed_a = characteristic_speeds(m, outer, family).lagrangian;
+    f.speed_b = characteristic_speeds(m, star, family).lagrangian;
+    f.steps = static_cast<int>(out.size());
+    for (int step : out) nodes_[step].fan = id;
+  }
   if (live_fronts_ > scene_.solver.max_fronts) {
     recorder_.stop(budget_stop_reason(scene_, Budget::fronts, t));  // the run stops after this interaction
   }
@@ -443,6 +470,7 @@ void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, in
 
 void Tracker::reanchor(int id, double t) {
   Node& n = nodes_[id];
+  leave_fan(n);
   const double X = n.X_at(t), x = n.x_at(t);
   record_segment(n, t);
   n.t0 = t;
@@ -638,7 +666,9 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   for (int f = 0; f < 2; ++f) {
     const std::vector<int>& out = f == 0 ? emitted_left_ : emitted_right_;
     if (steps_in[f] == 1 && out.size() == 1 && nodes_[out.front()].front_kind == FrontKind::rarefaction) {
+      // A step of an older fan goes on: no new centred fan here.
       nodes_[out.front()].born = steps_born[f];
+      leave_fan(nodes_[out.front()]);
     } else {
       error_fans_ += steps_error[f];
       carried_in += steps_error[f];

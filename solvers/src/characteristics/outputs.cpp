@@ -64,8 +64,30 @@ bool Tracker::locate(int body, double X, double t, Region& region, double& x) co
       n = next;
     const Node& node = nodes_[n];
     region = node.right;
+    State in_fan;
+    if (fan_sample(n, X, t, in_fan, x)) {
+      region = Region{region.material, in_fan};
+      return true;
+    }
     const double Xn = node.X_at(t);
     x = node.x_at(t) + (X - Xn) * region.state.stretch.value() / std::cosh(region.state.rapidity);
+    return true;
+  }
+  return false;
+}
+
+bool Tracker::fan_sample(int n, double X, double t, State& state, double& x) const {
+  for (const int id : {n, nodes_[n].next}) {
+    if (id == kNone || nodes_[id].kind != NodeKind::front || nodes_[id].fan == kNone) continue;
+    const CentredFan& f = fans_[nodes_[id].fan];
+    if (!(t > f.t0)) return false;
+    const double speed = (X - f.X0) / (t - f.t0);
+    if (!(speed > std::min(f.speed_a, f.speed_b) && speed < std::max(f.speed_a, f.speed_b))) continue;
+    const Solved<State> exact = centred_fan_state(*f.material, f.family, f.j_other, f.psi_a, f.psi_b, speed);
+    if (!exact.ok()) return false;  // the steps' state, then
+    state = exact.value;
+    // Every characteristic of the fan is a straight line from its centre in the lab as well.
+    x = f.x0 + characteristic_speeds(*f.material, state, f.family).lab * (t - f.t0);
     return true;
   }
   return false;
@@ -133,8 +155,14 @@ void Tracker::sample(const SampleTime& st) {
            next = nodes_[n].next)
         n = next;
       const Node& node = nodes_[n];
-      const Region& r = node.right;
-      const double x = node.x_at(t) + (X - node.X_at(t)) * label_density(r.state);
+      Region r = node.right;
+      double x = 0.0;
+      State in_fan;
+      if (fan_sample(n, X, t, in_fan, x)) {
+        r = Region{r.material, in_fan};
+      } else {
+        x = node.x_at(t) + (X - node.X_at(t)) * label_density(r.state);
+      }
       for (Quantity q : snap.quantities)
         recorder_.snapshot(SnapshotSample{t, static_cast<int>(b), X, q, quantity(q, r, X, x)});
     }

@@ -102,6 +102,20 @@ enum class NodeKind : std::uint8_t { front, interface, left_end, right_end, ligh
 /// What a body end touches.
 enum class Attach : std::uint8_t { free, boundary, body };
 
+/// A centred rarefaction fan while its steps keep the lines they were emitted on: between
+/// them the solution is the exact self-similar fan (the state whose characteristic of the
+/// fan's family runs from the centre to the sample), which samples take in place of the
+/// steps' states. A step that interacts, or is re-anchored, leaves it.
+struct CentredFan {
+  double t0 = 0.0, X0 = 0.0, x0 = 0.0;  ///< the centre
+  int family = 0;
+  const Material* material = nullptr;
+  double j_other = 0.0;                 ///< the other family's invariant, the same across the fan
+  double psi_a = 0.0, psi_b = 0.0;      ///< Ψ at its outer edge and at its star edge
+  double speed_a = 0.0, speed_b = 0.0;  ///< the family's label speeds there
+  int steps = 0;                        ///< steps still on their lines (0: a free slot)
+};
+
 /// A state of a material between two nodes, with what crossings ask of it remembered:
 /// Ψ of its stretch and the characteristic speeds of both families (NaN until asked for;
 /// Tracker::psi_of and Tracker::speeds_of fill them). A region is written whole, so a new
@@ -136,6 +150,8 @@ struct Node {
   /// it: a crossing hands it on with the wave, a split shares it among the outgoing waves
   /// (Tracker::share_carried), a merge adds the two fronts' and its own cost.
   double carried = 0.0;
+  /// Fan steps still on the line they were emitted on: their centred fan (Tracker::fans_).
+  int fan = kNone;
   /// Interfaces and contacts: a wave weaker than the threshold that this node did not emit
   /// (its strength times its speed, the L1 error it adds per unit time), since when, and
   /// the most it can add (strength times the natural length it could sweep).
@@ -307,6 +323,7 @@ class Tracker {
       --live_fronts_;
       error_lost_ += n.carried;  // a caller that hands the error on has taken it already
       n.carried = 0.0;
+      leave_fan(n);
     }
     close_defect(n, t);
     record_segment(n, t);
@@ -469,6 +486,17 @@ class Tracker {
   std::unique_ptr<MaterialMemo> memo_;
   double fan_step_ = 1e-12;
   bool fan_capped_ = false;
+  std::vector<CentredFan> fans_;
+  std::vector<int> free_fans_;
+  /// A step leaves its centred fan (it interacts, or moves off its line).
+  void leave_fan(Node& n) {
+    if (n.fan == kNone) return;
+    if (--fans_[n.fan].steps == 0) free_fans_.push_back(n.fan);
+    n.fan = kNone;
+  }
+  /// Where label X at time t lies in the region right of node n and in the centred fan of n
+  /// or of its right neighbour: the exact state there and its lab position.
+  bool fan_sample(int n, double X, double t, State& state, double& x) const;
   // ---- the error budget (see README "What the tolerance means") --------------------
   double weak_ = 0.0;                   ///< strength |ΔJ| below which an interface or contact emits no wave
   double weak_merging_ = 0.0;           ///< strength below which two fronts of one family merging emit no reflection

@@ -143,6 +143,14 @@ void characteristic_speeds_both(const Material& material, const State& state, Fr
 /// (not_converged if Newton does not settle there: the caller then brackets the root).
 Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch star, int family);
 
+/// The state inside a centred rarefaction fan of family `family` where its characteristics
+/// run at label speed `speed` (dX/dt = (X − X0)/(t − t0) from its centre): the other family's
+/// invariant `j_other` is the same across the fan (J− = φ − Ψ for a C+ fan, J+ = φ + Ψ for a
+/// C− one), and Ψ is where, between psi_a and psi_b (its two edges), the family's speed is
+/// `speed` (Brent's method, to round-off). `speed` must lie between the edges' speeds.
+[[nodiscard]] Solved<State> centred_fan_state(const Material& m, int family, double j_other, double psi_a, double psi_b,
+                                              double speed);
+
 /// What the jump conditions ask of a stretch: s, p and e + p (NaN until evaluated).
 struct JumpLaws {
   double stretch = std::numeric_limits<double>::quiet_NaN();
