@@ -36,6 +36,7 @@ solver: {tolerance: %.17g}
 time: {end: %.17g}
 outputs:
   snapshots: [{times: [%.17g], quantities: [s, v, x], samples: 20001}]
+  probes: [{name: inside, body: bar, at: 0.5, quantities: [s], every: 0.05}]
 )",
                   tolerance, t, t);
     const RunResult r = solve(load_scene_string(yaml, "<test>"));
@@ -68,6 +69,15 @@ outputs:
         previous_x = s.value;
       }
     }
+    // A probe at X = 0.5 is inside the fan once its tail has passed (X/t below the tail's
+    // speed), and reads the exact state at every sample, before, inside and after.
+    int probed = 0;
+    for (const ProbeSample& p : r.probes) {
+      if (p.t == 0.0) continue;
+      EXPECT_NEAR(p.value, fan.at(0.5 / p.t).stretch, 1e-12 * p.value) << "t = " << p.t;
+      if (0.5 / p.t < fan.right_edge_speed() && 0.5 / p.t > fan.left_edge_speed()) ++probed;
+    }
+    EXPECT_GE(probed, 4);
     SCOPED_TRACE("tolerance " + std::to_string(tolerance));
     EXPECT_GT(inside, 4000);
     EXPECT_EQ(static_cast<int>(levels.size()), inside) << "a state per sample, not the steps' few";
