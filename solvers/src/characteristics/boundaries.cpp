@@ -211,7 +211,8 @@ void Tracker::absorb_droplet(int piece, int side, int before, double X, double x
   rebalance();
   for (int n : inside) {
     account_front_end(n, t);
-    if (nodes_[n].front_kind == FrontKind::rarefaction) error_fans_ += fan_error(n, t);
+    // Its fan error goes with the error it carries, to error_lost_ as it is killed.
+    if (nodes_[n].front_kind == FrontKind::rarefaction) nodes_[n].carried += book_fan_error(n, t);
   }
   for (int n : inside) kill_node(n, t);
   if (side < 0) {

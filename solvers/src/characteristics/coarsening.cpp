@@ -109,11 +109,7 @@ int Tracker::merge_neighbours(int id, double t) {
     double carried = nodes_[p].carried + nodes_[q].carried + best_cost;
     for (int n : {p, q}) {
       account_front_end(n, t);
-      if (nodes_[n].front_kind == FrontKind::rarefaction) {
-        const double booked = fan_error(n, t);
-        error_fans_ += booked;
-        carried += booked;
-      }
+      if (nodes_[n].front_kind == FrontKind::rarefaction) carried += book_fan_error(n, t);
       nodes_[n].carried = 0.0;
     }
     error_merges_ += best_cost;

@@ -188,9 +188,7 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     if (continues && born[k] == t) {
       born[k] = n->born;
     } else {
-      const double booked = fan_error(static_cast<int>(n - nodes_.data()), t);
-      error_fans_ += booked;
-      carried[k] += booked;
+      carried[k] += book_fan_error(static_cast<int>(n - nodes_.data()), t);
     }
   }
 

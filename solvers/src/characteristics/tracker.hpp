@@ -622,6 +622,13 @@ class Tracker {
   /// over |Δλ| (t − born) in X (no more than the piece), which a jump in its middle misses
   /// by σ/4 of that width on average.
   double fan_error(int id, double t) const;
+  /// Books fan step `id`'s error up to t in error_fans_ and returns it, for the wave that
+  /// carries it on (every error in the bound travels with a wave or stays where booked).
+  double book_fan_error(int id, double t) {
+    const double booked = fan_error(id, t);
+    error_fans_ += booked;
+    return booked;
+  }
   double piece_length(int piece) const {
     return nodes_[pieces_[piece].right_end].X0 - nodes_[pieces_[piece].left_end].X0;  // ends move with the material
   }
