@@ -62,18 +62,21 @@ bool Tracker::locate(int body, double X, double t, Region& region, double& x) co
     for (int next = nodes_[n].next;
          next != kNone && nodes_[next].kind != NodeKind::right_end && nodes_[next].X_at(t) <= X; next = nodes_[n].next)
       n = next;
-    const Node& node = nodes_[n];
-    region = node.right;
-    State in_fan;
-    if (fan_sample(n, X, t, in_fan, x)) {
-      region = Region{region.material, in_fan};
-      return true;
-    }
-    const double Xn = node.X_at(t);
-    x = node.x_at(t) + (X - Xn) * region.state.stretch.value() / std::cosh(region.state.rapidity);
+    region_at(n, X, t, region, x);
     return true;
   }
   return false;
+}
+
+void Tracker::region_at(int n, double X, double t, Region& region, double& x) const {
+  const Node& node = nodes_[n];
+  region = node.right;
+  State in_fan;
+  if (fan_sample(n, X, t, in_fan, x)) {
+    region = Region{region.material, in_fan};
+    return;
+  }
+  x = node.x_at(t) + (X - node.X_at(t)) * label_density(region.state);
 }
 
 bool Tracker::fan_sample(int n, double X, double t, State& state, double& x) const {
@@ -154,15 +157,9 @@ void Tracker::sample(const SampleTime& st) {
            next != kNone && nodes_[next].kind != NodeKind::right_end && nodes_[next].X_at(t) <= X;
            next = nodes_[n].next)
         n = next;
-      const Node& node = nodes_[n];
-      Region r = node.right;
+      Region r;
       double x = 0.0;
-      State in_fan;
-      if (fan_sample(n, X, t, in_fan, x)) {
-        r = Region{r.material, in_fan};
-      } else {
-        x = node.x_at(t) + (X - node.X_at(t)) * label_density(r.state);
-      }
+      region_at(n, X, t, r, x);
       for (Quantity q : snap.quantities)
         recorder_.snapshot(SnapshotSample{t, static_cast<int>(b), X, q, quantity(q, r, X, x)});
     }

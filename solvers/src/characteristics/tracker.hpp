@@ -497,6 +497,9 @@ class Tracker {
   /// Where label X at time t lies in the region right of node n and in the centred fan of n
   /// or of its right neighbour: the exact state there and its lab position.
   bool fan_sample(int n, double X, double t, State& state, double& x) const;
+  /// The state at label X at time t in the region right of node n (the exact fan's where X
+  /// lies in an uncrossed one, see fan_sample), and the lab position of X.
+  void region_at(int n, double X, double t, Region& region, double& x) const;
   // ---- the error budget (see README "What the tolerance means") --------------------
   double weak_ = 0.0;                   ///< strength |ΔJ| below which an interface or contact emits no wave
   double weak_merging_ = 0.0;           ///< strength below which two fronts of one family merging emit no reflection
