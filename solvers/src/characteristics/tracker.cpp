@@ -145,7 +145,7 @@ RunResult Tracker::run() {
   // few times as many), a gap closing, a piston changing speed, or a sample. An interaction
   // emits at most one front per family, except a fan, split into steps of Ψ between one and
   // two tolerances wide; it removes those it resolves. Live fronts are bounded by the cap
-  // front_cap_ = bodies × max(100, 0.5/tolerance) (merges grow costlier while it is
+  // front_cap_ = bodies × max(kMinFrontsPerBody, kFrontsPerBody/tolerance) (merges grow costlier while it is
   // exceeded), so a crossing of the bodies by the waves costs at most about front_cap_²/4
   // interactions and the interactions grow linearly with time.end. Fans alone need about
   // (their span in Ψ)/tolerance steps: a genuinely nonlinear body costs ~1/tolerance² per
@@ -259,7 +259,7 @@ RunResult Tracker::run() {
     const double parts[4] = {error_merges_, error_fans_ + error_fans_alive, error_defects_, error_droplets_};
     const int largest = static_cast<int>(std::max_element(parts, parts + 4) - parts);
     static constexpr const char* kWhy[4] = {
-        "merges that held the live fronts to their cap (max(100, 0.3/tolerance) per body): the waves scatter into "
+        "merges that held the live fronts to their cap (max(100, 0.25/tolerance) per body): the waves scatter into "
         "more fronts than the cap lets the run follow",
         "fan steps, whose error grows as their fans spread (the widest step is fan_step_max)",
         "weak waves held back at interfaces and contacts", "droplets kept with their pieces"};
