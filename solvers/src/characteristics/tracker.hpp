@@ -647,7 +647,7 @@ class Tracker {
   double piece_length(int piece) const {
     return nodes_[pieces_[piece].right_end].X0 - nodes_[pieces_[piece].left_end].X0;  // ends move with the material
   }
-  void share_carried(double carried_in, double sweep_in, int fronts_in, double released);
+  void share_carried(double carried_in, double sweep_in, int fronts_in, double fastest_in, double released);
   void hold_back_weak_wave(RiemannSolution& sol, const Region& left, const Region& right, int holder,
                            double min_pressure, double t);
 
