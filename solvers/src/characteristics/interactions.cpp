@@ -829,6 +829,7 @@ void Tracker::share_carried(double carried_in, double sweep_in, int fronts_in, d
   // its error moves on at least in the ratio of the label speeds; only that may shrink it.
   if (fronts_in > 1 && fastest_in > 0.0) ratio = std::max(ratio, std::min(1.0, slowest_out / fastest_in));
   ratio = std::min(ratio, kMaxScattering);
+  if (ratio > 1.0) error_scattered_ += carried_in * (ratio - 1.0);
   const double per_sweep = (carried_in * ratio + released) / sweep_out;
   for (const std::vector<int>* out : {&emitted_left_, &emitted_right_})
     for (int id : *out) nodes_[id].carried += per_sweep * nodes_[id].strength * std::abs(nodes_[id].dXdt);
