@@ -803,10 +803,10 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
 /// than assumed, so that an error carried into a softer body grows as the wave does. Where
 /// several fronts meet, the error does not shrink with their cancellation, only with the
 /// label speeds (the ratio is at least the slowest outgoing over the fastest incoming speed,
-/// at most 1: until session 14 it was at least 1, and an error carried back and forth
-/// between a slow body and a fast one grew at every return, to 10⁴ on the five-bar scene at
-/// tolerance 1e-4, t = 100); a wave that sets off far stronger ones (a front that makes an interface part)
-/// hands on at most kMaxScattering times its error. A wave held back at the node (see
+/// at most 1; until session 14 at least 1, which kept an error carried from a fast body into
+/// a slow one at its size: 231 of 400 random scenes' bounds are now 0.92 times theirs); a
+/// wave that sets off far stronger ones (a front that makes an interface part) hands on at
+/// most kMaxScattering times its error. A wave held back at the node (see
 /// hold_back_weak_wave) leaves now, late: the error it booked while held goes on with the
 /// outgoing waves as well. With no wave out, it all stays in the bound as it was.
 void Tracker::share_carried(double carried_in, double sweep_in, int fronts_in, double fastest_in, double released) {

@@ -145,12 +145,12 @@ RunResult Tracker::run() {
   // few times as many), a gap closing, a piston changing speed, or a sample. An interaction
   // emits at most one front per family, except a fan, split into steps of Ψ between one and
   // two tolerances wide; it removes those it resolves. Live fronts are bounded by the cap
-  // front_cap_ = bodies × max(kMinFrontsPerBody, kFrontsPerBody/tolerance) (merges grow costlier while it is
-  // exceeded), so a crossing of the bodies by the waves costs at most about front_cap_²/4
-  // interactions and the interactions grow linearly with time.end. Fans alone need about
-  // (their span in Ψ)/tolerance steps: a genuinely nonlinear body costs ~1/tolerance² per
-  // crossing. A spray whose droplets book more than the tolerance coarsens all this to its
-  // own level (rebalance): its cost per crossing then no longer grows as the tolerance falls.
+  // bodies × front_cap_, front_cap_ = max(kMinFrontsPerBody, kFrontsPerBody/tolerance)
+  // (merges grow costlier while it is exceeded), so a crossing of the bodies by the waves costs at most about
+  // front_cap_²/4 interactions and the interactions grow linearly with time.end. Fans alone need about (their span in
+  // Ψ)/tolerance steps: a genuinely nonlinear body costs ~1/tolerance² per crossing. A spray whose droplets book more
+  // than the tolerance coarsens all this to its own level (rebalance): its cost per crossing then no longer grows as
+  // the tolerance falls.
   for (;;) {
     while (!queue_.empty() && !valid(queue_.front())) pop_event();
     // The earliest of the next rare event and the next meeting (ties in the order scheduled).

@@ -556,10 +556,11 @@ class Tracker {
   /// with the droplets, as error already committed that a finer resolution of the waves to
   /// come does not take back. It grows with what the waves made too, so where the spray's
   /// scattering grows errors by more than a third the resolution goes to its coarsest: a
-  /// switch more than a balance, kept because it measured better. On 400 random scenes (tolerance 1e-3, t = 20)
-  /// counting it changed 117, their interactions × 0.86 and their bound × √interactions × 0.92 (geometric means); on
-  /// seeds 401–800, 124 changed, × 0.73 and × 0.91, the slowest spray (seed 745) 0.91 ->
-  /// 0.19 s with its bound 1.4 -> 2.1 (errors carried through its cracks 1.3 of it).
+  /// switch more than a balance, kept because it measured better. On 400 random scenes
+  /// (tolerance 1e-3, t = 20) counting it changed 117, their interactions × 0.86 and their
+  /// bound × √interactions × 0.92 (geometric means); on seeds 401–800, 124 changed, × 0.73
+  /// and × 0.91, the slowest spray (seed 745) 0.91 -> 0.19 s with its bound 1.4 -> 2.1
+  /// (errors carried through its cracks 1.3 of it).
   void rebalance() {
     double r = error_merges_ + error_fans_ < kDropletBalance * (error_droplets_ + error_scattered_)
                    ? std::min(kCoarsestResolution, kResolutionStep * resolution_)
