@@ -419,6 +419,33 @@ TEST(Cost, FrontsStayBoundedAndWorkGrowsLinearlyOverLongRuns) {
   EXPECT_GT(solver_number(longer.result, "error_bound"), solver_number(shorter.result, "error_bound"));
 }
 
+// Pieces of the random scenes below, drawn with `uniform(a, b)`: a `rigid` or a `hooke`
+// material m<b>, and three bars of materials m0..m2 side by side from x = 0, moving slowly,
+// between a piston pushing at up to 0.12c and a bonded wall. Lengths are rounded to four
+// decimals, so that the positions printed at six digits are exactly where the bars touch.
+template <class Uniform>
+void write_rigid(std::ostream& y, int b, Uniform& uniform) {
+  y << "  m" << b << ": {model: rigid, rest_density: " << uniform(0.3, 3.0) << "}\n";
+}
+template <class Uniform>
+void write_hooke(std::ostream& y, int b, Uniform& uniform) {
+  y << "  m" << b << ": {model: hooke, wave_speed: " << uniform(0.4, 0.95) << ", rest_density: " << uniform(0.3, 3.0)
+    << "}\n";
+}
+template <class Uniform>
+void write_three_bars_pushed_into_a_wall(std::ostream& y, Uniform& uniform) {
+  y << "bodies:\n";
+  double x = 0.0;
+  for (int b = 0; b < 3; ++b) {
+    const double length = std::round(uniform(0.4, 1.2) * 1e4) / 1e4;
+    y << "  - {name: b" << b << ", material: m" << b << ", position: " << x << ", length: " << length
+      << ", velocity: " << uniform(-0.05, 0.05) << "}\n";
+    x += length;
+  }
+  y << "boundaries:\n  left: {type: piston, velocity: " << uniform(0.0, 0.12)
+    << "}\n  right: {type: wall, bonded: true}\n";
+}
+
 // Random scenes of three bars of `rigid` and `hooke` (densities, wave speeds, lengths and
 // velocities drawn at random) pushed by a piston into a bonded wall: every contact splits
 // every wave, and a wave an interface sends into a softer or slower bar grows the error it
@@ -437,22 +464,12 @@ TEST(ErrorBound, HoldsAgainstExactRunsOfRandomLinearlyDegenerateBars) {
     y << "name: random_bars\nmaterials:\n";
     for (int b = 0; b < 3; ++b) {
       if (uniform(0.0, 1.0) < 0.5) {
-        y << "  m" << b << ": {model: rigid, rest_density: " << uniform(0.3, 3.0) << "}\n";
+        write_rigid(y, b, uniform);
       } else {
-        y << "  m" << b << ": {model: hooke, wave_speed: " << uniform(0.4, 0.95)
-          << ", rest_density: " << uniform(0.3, 3.0) << "}\n";
+        write_hooke(y, b, uniform);
       }
     }
-    y << "bodies:\n";
-    double x = 0.0;
-    for (int b = 0; b < 3; ++b) {
-      const double length = uniform(0.4, 1.2);
-      y << "  - {name: b" << b << ", material: m" << b << ", position: " << x << ", length: " << length
-        << ", velocity: " << uniform(-0.05, 0.05) << "}\n";
-      x += length;
-    }
-    y << "boundaries:\n  left: {type: piston, velocity: " << uniform(0.0, 0.12)
-      << "}\n  right: {type: wall, bonded: true}\n";
+    write_three_bars_pushed_into_a_wall(y, uniform);
     const double t_end = std::round(uniform(3.0, 6.0) * 10.0) / 10.0;
     y << "outputs: {snapshots: [{times: [" << t_end << "], quantities: [v, s], samples: 40001}]}\n";
     SCOPED_TRACE(y.str());
@@ -491,22 +508,12 @@ TEST(ErrorBound, HoldsAgainstFinerRunsOfRandomScenesWithAGasBar) {
         y << "  m" << b << ": {model: constant_sound_speed, sound_speed: " << uniform(0.4, 0.9)
           << ", rest_density: " << uniform(0.3, 3.0) << "}\n";
       } else if (kind < 0.65) {
-        y << "  m" << b << ": {model: rigid, rest_density: " << uniform(0.3, 3.0) << "}\n";
+        write_rigid(y, b, uniform);
       } else {
-        y << "  m" << b << ": {model: hooke, wave_speed: " << uniform(0.4, 0.95)
-          << ", rest_density: " << uniform(0.3, 3.0) << "}\n";
+        write_hooke(y, b, uniform);
       }
     }
-    y << "bodies:\n";
-    double x = 0.0;
-    for (int b = 0; b < 3; ++b) {
-      const double length = std::round(uniform(0.4, 1.2) * 1e4) / 1e4;  // printed exactly
-      y << "  - {name: b" << b << ", material: m" << b << ", position: " << x << ", length: " << length
-        << ", velocity: " << uniform(-0.05, 0.05) << "}\n";
-      x += length;
-    }
-    y << "boundaries:\n  left: {type: piston, velocity: " << uniform(0.0, 0.12)
-      << "}\n  right: {type: wall, bonded: true}\n";
+    write_three_bars_pushed_into_a_wall(y, uniform);
     const double t_end = std::round(uniform(2.0, 4.0) * 10.0) / 10.0;
     y << "outputs: {snapshots: [{times: [" << t_end << "], quantities: [v, s], samples: 20001}]}\n";
     SCOPED_TRACE(y.str());
