@@ -5,12 +5,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "rigidity/errors.hpp"
+#include "rigidity/scene_loader.hpp"
+#include "rigidity/solvers/solve.hpp"
 #include "run_cli.hpp"
 
 namespace rigidity::testing {
@@ -212,6 +215,107 @@ TEST_F(SweepTest, BadSweepFileNamesTheKey) {
   EXPECT_EQ(outcome.exit_status, 2);
   EXPECT_TRUE(contains(outcome.err, "unknown conservation field 'energy_lost'"));
   EXPECT_FALSE(fs::exists(dir() / "out"));
+}
+
+// A collect path that names nothing in the scene (a probe, a probe's quantity, a body, an
+// event kind, a solver number of its method) would run every case for an empty column:
+// refused before the first case, at the file, line and key of the path.
+TEST_F(SweepTest, CollectNamesAreCheckedAgainstTheSceneBeforeAnyCase) {
+  struct Typo {
+    std::string path, message;
+  };
+  const std::vector<Typo> typos = {
+      {"solver.error_bund", "'solver.error_bund': no solver number 'error_bund'; did you mean 'error_bound'?"},
+      {"probe.wal.p.max",
+       "'probe.wal.p.max': no probe 'wal'; did you mean 'wall'? (the default scene has: wall, rear)"},
+      {"probe.rear.p.max", "'probe.rear.p.max': probe 'rear' does not record 'p'"},
+      {"body.barr.velocity_mean", "'body.barr.velocity_mean': no body 'barr'; did you mean 'bar'?"},
+      {"event.separaton.first.t", "'event.separaton.first.t': no event kind 'separaton'; did you mean 'separation'?"},
+  };
+  for (const Typo& typo : typos) {
+    SCOPED_TRACE(typo.path);
+    write_file("typo.yaml",
+               "parameters:\n  bodies.0.velocity: {values: [0.5]}\ncollect:\n  ok: probe.wall.p.max\n"
+               "  figure: " +
+                   typo.path + "\n");
+    const CliOutcome outcome = rigidity("sweep typo.yaml --quiet");
+    EXPECT_EQ(outcome.exit_status, 2);
+    EXPECT_TRUE(contains(outcome.err, "typo.yaml:5:11: error: key 'collect.figure': " + typo.message));
+    EXPECT_FALSE(fs::exists(dir() / "out"));
+  }
+
+  // The finite-volume scheme's numbers are its own: a characteristics one is refused there,
+  // and accepted when a parameter sweeps the method.
+  write_file("fv.yaml",
+             "name: fv\nmaterials: {m: {model: rigid}}\nbodies: [{name: bar, material: m, position: 0, length: 1, "
+             "velocity: 0.5}]\nboundaries: {right: {type: wall}}\nsolver: {method: finite_volume, cells: 20}\n"
+             "time: {end: 0.5}\n");
+  write_file("fv_sweep.yaml",
+             "scene: fv.yaml\nparameters:\n  bodies.0.velocity: {values: [0.5]}\n"
+             "collect: {bound: solver.error_bound, steps: solver.steps}\n");
+  EXPECT_THROW(static_cast<void>(load_sweep_file((dir() / "fv_sweep.yaml").string())), InputError);
+  write_file("both_sweep.yaml",
+             "scene: fv.yaml\nparameters:\n  solver.method: {values: [finite_volume, characteristics]}\n"
+             "collect: {bound: solver.error_bound, steps: solver.steps}\n");
+  EXPECT_NO_THROW(static_cast<void>(load_sweep_file((dir() / "both_sweep.yaml").string())));
+}
+
+// The check knows every number each solver reports in summary.json's "solver" block: a
+// sweep may collect each of them.
+TEST_F(SweepTest, EverySolverNumberMayBeCollected) {
+  for (const std::string method : {"characteristics", "finite_volume"}) {
+    SCOPED_TRACE(method);
+    const std::string scene =
+        "name: s\nmaterials: {m: {model: hooke, wave_speed: 0.5}}\nbodies: [{name: bar, material: "
+        "m, position: 0, length: 1, velocity: 0.3}]\nboundaries: {right: {type: wall}}\n"
+        "solver: {method: " +
+        method + (method == "finite_volume" ? ", cells: 20" : ", resolution: auto") + "}\ntime: {end: 0.5}\n";
+    write_file("scene.yaml", scene);
+    const RunResult result = solve(load_scene_file((dir() / "scene.yaml").string()));
+    ASSERT_FALSE(result.solver_numbers.empty());
+    std::string collect;
+    for (const auto& [name, value] : result.solver_numbers) collect += "  " + name + ": solver." + name + "\n";
+    write_file("sweep.yaml",
+               "scene: scene.yaml\nparameters:\n  bodies.0.velocity: {values: [0.3]}\ncollect:\n" + collect);
+    EXPECT_NO_THROW(static_cast<void>(load_sweep_file((dir() / "sweep.yaml").string())));
+  }
+}
+
+// examples/sweeps/paper_velocity.yaml: every row has its contact time (the run lasts past
+// the separation at 2 sqrt((1-v)/(1+v)) of the slowest bar), and the velocities are written
+// as the grid's decimals.
+TEST_F(SweepTest, PaperVelocityExampleFillsEveryRow) {
+  const CliOutcome outcome =
+      rigidity("sweep " + shell_quote(std::string(RIGIDITY_SOURCE_DIR) + "/examples/sweeps/paper_velocity.yaml") +
+               " --out table -j 2 --quiet");
+  ASSERT_EQ(outcome.exit_status, 0) << outcome.err;
+  const Rows rows = read_csv(dir() / "table/sweep.csv");
+  ASSERT_EQ(rows.size(), 20u);
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const double v = 0.05 * static_cast<double>(i);
+    char written[16];
+    std::snprintf(written, sizeof written, "%g", v);
+    EXPECT_EQ(rows[i][column(rows, "bodies.0.velocity")], written);
+    const std::string& contact = rows[i][column(rows, "contact_time")];
+    ASSERT_FALSE(contact.empty()) << "v = " << v;
+    EXPECT_NEAR(std::stod(contact), 2.0 * std::sqrt((1.0 - v) / (1.0 + v)), 1e-9) << "v = " << v;
+  }
+}
+
+TEST_F(SweepTest, GridValuesAreTheirDecimals) {
+  write_file("grid.yaml",
+             "parameters:\n"
+             "  bodies.0.velocity: {linspace: [0.05, 0.95, 19]}\n"
+             "  bodies.0.length: {logspace: [1e-6, 1e-2, 5]}\n");
+  const Sweep grid = load_sweep_file((dir() / "grid.yaml").string());
+  ASSERT_EQ(grid.cases.size(), 95u);
+  const std::vector<std::string> lengths = {"1e-06", "1e-05", "1e-04", "0.001", "0.01"};
+  for (std::size_t i = 0; i < 19; ++i)
+    for (std::size_t j = 0; j < 5; ++j) {
+      char velocity[16];
+      std::snprintf(velocity, sizeof velocity, "%g", 0.05 * static_cast<double>(i + 1));
+      EXPECT_EQ(grid.cases[5 * i + j], (std::vector<std::string>{velocity, lengths[j]}));
+    }
 }
 
 // ---- the cases a sweep file lays out (library API) ------------------------------------

@@ -8,10 +8,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <random>
 #include <set>
 #include <sstream>
@@ -101,6 +104,14 @@ struct ParameterDecl {
   double low = 0.0, high = 0.0;
 };
 
+/// A grid value rounded to 15 significant digits: the round-off of its arithmetic (a few ulps)
+/// goes, so 0.05 + 2 (0.95 − 0.05)/18 is 0.15, not 0.15000000000000002, and 1e-6·100 is 0.0001.
+double to_15_digits(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.15g", value);
+  return std::strtod(text, nullptr);
+}
+
 std::vector<double> spaced(const SweepReader& reader, const YAML::Node& node, const std::string& key, bool log) {
   if (!node.IsSequence() || node.size() != 3) reader.fail(node, key, "must be [a, b, n]");
   const double a = reader.number(node[0], key), b = reader.number(node[1], key);
@@ -109,15 +120,94 @@ std::vector<double> spaced(const SweepReader& reader, const YAML::Node& node, co
   std::vector<double> values;
   for (long i = 0; i < n; ++i) {
     const double f = n == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(n - 1);
-    // (a (n-1-i) + b i) / (n-1): 0.1, 0.2, ... come out as written, not 0.09999999999999999.
-    double v = log ? a * std::pow(b / a, f)
-               : n == 1
-                   ? a
-                   : (a * static_cast<double>(n - 1 - i) + b * static_cast<double>(i)) / static_cast<double>(n - 1);
-    if (i == n - 1 && n > 1) v = b;
-    values.push_back(v);
+    const double v =
+        log      ? a * std::pow(b / a, f)
+        : n == 1 ? a
+                 : (a * static_cast<double>(n - 1 - i) + b * static_cast<double>(i)) / static_cast<double>(n - 1);
+    values.push_back(i == 0 ? a : i == n - 1 ? b : to_15_digits(v));
   }
   return values;
+}
+
+/// The event kinds the solvers report (SPEC §5).
+const std::vector<std::string> kEventKinds = {"contact", "separation", "cavitation", "rejoin"};
+
+/// The names in summary.json's "solver" block, by method: the characteristics solver's
+/// (resolution and pilot_error_bound with solver.auto_resolution), the finite-volume scheme's.
+const std::vector<std::string> kCharacteristicsNumbers = {
+    "tolerance",       "error_bound",  "weak_wave_threshold", "waves_held_back",  "fronts_merged",  "error_defects",
+    "error_fans",      "error_merges", "error_carried",       "droplets",         "error_droplets", "fronts_alive_max",
+    "wave_resolution", "fan_step_max", "resolution",          "pilot_error_bound"};
+const std::vector<std::string> kFiniteVolumeNumbers = {"cells", "cells_total", "order", "cfl", "steps"};
+
+std::string listed(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& n : names) text += (text.empty() ? "" : ", ") + n;
+  return text.empty() ? "none" : text;
+}
+
+/// Every collect path names what the base scene has: its probes and their quantities, its
+/// bodies, the solver numbers of its method (of both methods when solver.method is swept),
+/// an event kind the solvers report. A name only a case's parameters bring in is not
+/// foreseen; a base scene that does not load leaves the check to the cases, which report it.
+void check_collect_names(const SweepReader& reader, const Sweep& sweep, const std::vector<YAML::Node>& nodes) {
+  if (sweep.collect.empty()) return;
+  std::optional<Scene> loaded;
+  try {
+    loaded.emplace(sweep.scene_path.empty() ? load_scene_string(default_scene_text(), "<default>")
+                                            : load_scene_file(sweep.scene_path));
+  } catch (const std::exception&) {
+    return;
+  }
+  const Scene& scene = *loaded;
+  const std::string scene_name = sweep.scene_path.empty() ? "the default scene" : "the scene " + sweep.scene_path;
+  const bool method_swept =
+      std::find(sweep.parameters.begin(), sweep.parameters.end(), "solver.method") != sweep.parameters.end();
+  std::vector<std::string> solver_numbers;
+  if (method_swept || scene.solver.method == SolverMethod::characteristics)
+    solver_numbers.insert(solver_numbers.end(), kCharacteristicsNumbers.begin(), kCharacteristicsNumbers.end());
+  if (method_swept || scene.solver.method == SolverMethod::finite_volume)
+    solver_numbers.insert(solver_numbers.end(), kFiniteVolumeNumbers.begin(), kFiniteVolumeNumbers.end());
+
+  for (std::size_t c = 0; c < sweep.collect.size(); ++c) {
+    const std::string& p = sweep.collect[c].path;
+    std::vector<std::string> parts;
+    std::stringstream split(p);
+    for (std::string part; std::getline(split, part, '.');) parts.push_back(part);
+    const auto bad = [&](const std::string& what, const std::string& name, const std::vector<std::string>& known) {
+      const std::string nearest = closest_match(name, known);
+      reader.fail(nodes[c], "collect." + sweep.collect[c].name,
+                  "'" + p + "': " + what + " '" + name + "'" +
+                      (nearest.empty() ? "" : "; did you mean '" + nearest + "'?") + " (" + scene_name +
+                      " has: " + listed(known) + ")");
+    };
+    if (parts[0] == "probe") {
+      std::vector<std::string> names;
+      const ProbeDecl* probe = nullptr;
+      for (const ProbeDecl& d : scene.outputs.probes) {
+        names.push_back(d.name);
+        if (d.name == parts[1]) probe = &d;
+      }
+      if (probe == nullptr) {
+        bad("no probe", parts[1], names);
+      } else {
+        std::vector<std::string> quantities;
+        for (Quantity q : probe->quantities) quantities.emplace_back(to_string(q));
+        if (std::find(quantities.begin(), quantities.end(), parts[2]) == quantities.end())
+          bad("probe '" + parts[1] + "' does not record", parts[2], quantities);
+      }
+    } else if (parts[0] == "body") {
+      std::vector<std::string> names;
+      for (const BodyDecl& b : scene.bodies) names.push_back(b.name);
+      if (std::find(names.begin(), names.end(), parts[1]) == names.end()) bad("no body", parts[1], names);
+    } else if (parts[0] == "event") {
+      if (std::find(kEventKinds.begin(), kEventKinds.end(), parts[1]) == kEventKinds.end())
+        bad("no event kind", parts[1], kEventKinds);
+    } else if (parts[0] == "solver") {
+      if (std::find(solver_numbers.begin(), solver_numbers.end(), parts[1]) == solver_numbers.end())
+        bad("no solver number", parts[1], solver_numbers);
+    }
+  }
 }
 
 /// A uniform double in [0, 1) from 53 bits of the generator: the same on every platform.
@@ -305,7 +395,8 @@ Sweep load_sweep_file(const std::string& path) {
     }
   }
 
-  // Figures of merit: checked for their form here, for their names (probes, bodies) per case.
+  // Figures of merit: checked for their form here, for their names against the scene below.
+  std::vector<YAML::Node> collect_nodes;  // where each collect entry's path is written
   if (const YAML::Node collect = root["collect"]) {
     if (!collect.IsMap()) reader.fail(collect, "collect", "must be a mapping name: path");
     for (const auto& entry : collect) {
@@ -354,8 +445,10 @@ Sweep load_sweep_file(const std::string& path) {
               "'?");
       }
       sweep.collect.push_back(SweepCollect{name, p});
+      collect_nodes.push_back(entry.second);
     }
   }
+  check_collect_names(reader, sweep, collect_nodes);
   return sweep;
 }
 
