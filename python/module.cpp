@@ -21,12 +21,14 @@
 #include "rigidity/errors.hpp"
 #include "rigidity/output.hpp"
 #include "rigidity/plugins.hpp"
+#include "rigidity/quantity.hpp"
 #include "rigidity/registry.hpp"
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/riemann.hpp"
 #include "rigidity/solvers/solve.hpp"
 #include "rigidity/solvers/wall_impact.hpp"
 #include "rigidity/sweep.hpp"
+#include "rigidity/units.hpp"
 
 namespace py = pybind11;
 
@@ -67,7 +69,25 @@ py::array_t<double> column(const std::vector<double>& values) {
   return out;
 }
 
-/// probes[name][quantity] = (t, value)
+/// A value of the run in the scene's units: the conversion the CSV writers apply.
+double in_scene_units(const Run& run, double natural_value, rigidity::Dimension dimension) {
+  return rigidity::from_natural(natural_value, dimension, run.scene.units);
+}
+
+/// The unit of every column and quantity of the outputs in the scene's units: t, x, X, the
+/// probe and snapshot quantities ("p": "Pa" in an SI scene, "rho c^2" in a natural one).
+py::dict units(const Run& run) {
+  using rigidity::Dimension;
+  py::dict out;
+  out["system"] = run.scene.units == rigidity::UnitSystem::si ? "si" : "natural";
+  out["t"] = std::string(rigidity::unit_symbol(Dimension::time, run.scene.units));
+  for (rigidity::Quantity q : rigidity::kAllQuantities)
+    out[py::str(std::string(rigidity::to_string(q)))] =
+        std::string(rigidity::unit_symbol(rigidity::dimension_of(q), run.scene.units));
+  return out;
+}
+
+/// probes[name][quantity] = (t, value), in the scene's units
 py::dict probes(const Run& run) {
   py::dict out;
   const auto& declared = run.scene.outputs.probes;
@@ -78,8 +98,8 @@ py::dict probes(const Run& run) {
     auto it = of_probe.begin();
     while (it != of_probe.end() && it->first != s.quantity) ++it;
     if (it == of_probe.end()) it = of_probe.insert(of_probe.end(), {s.quantity, {}});
-    it->second.first.push_back(s.t);
-    it->second.second.push_back(s.value);
+    it->second.first.push_back(in_scene_units(run, s.t, rigidity::Dimension::time));
+    it->second.second.push_back(in_scene_units(run, s.value, rigidity::dimension_of(s.quantity)));
   }
   for (std::size_t i = 0; i < declared.size(); ++i) {
     py::dict quantities;
@@ -91,14 +111,14 @@ py::dict probes(const Run& run) {
   return out;
 }
 
-/// snapshots as columns: t, body, X, quantity, value
+/// snapshots as columns: t, body, X, quantity, value (in the scene's units)
 py::dict snapshots(const Run& run) {
   std::vector<double> t, X, value;
   py::list body, quantity;
   for (const rigidity::SnapshotSample& s : run.result.snapshots) {
-    t.push_back(s.t);
-    X.push_back(s.X);
-    value.push_back(s.value);
+    t.push_back(in_scene_units(run, s.t, rigidity::Dimension::time));
+    X.push_back(in_scene_units(run, s.X, rigidity::Dimension::length));
+    value.push_back(in_scene_units(run, s.value, rigidity::dimension_of(s.quantity)));
     body.append(run.result.body_names[static_cast<std::size_t>(s.body)]);
     quantity.append(std::string(rigidity::to_string(s.quantity)));
   }
@@ -111,16 +131,16 @@ py::dict snapshots(const Run& run) {
   return out;
 }
 
-/// fronts as columns: t0, x0, t1, x1, kind, family
+/// fronts as columns: t0, x0, t1, x1, kind, family (in the scene's units)
 py::dict fronts(const Run& run) {
   std::vector<double> t0, x0, t1, x1;
   std::vector<int> family;
   py::list kind;
   for (const rigidity::FrontSegment& f : run.result.fronts) {
-    t0.push_back(f.t0);
-    x0.push_back(f.x0);
-    t1.push_back(f.t1);
-    x1.push_back(f.x1);
+    t0.push_back(in_scene_units(run, f.t0, rigidity::Dimension::time));
+    x0.push_back(in_scene_units(run, f.x0, rigidity::Dimension::length));
+    t1.push_back(in_scene_units(run, f.t1, rigidity::Dimension::time));
+    x1.push_back(in_scene_units(run, f.x1, rigidity::Dimension::length));
     family.push_back(f.family);
     kind.append(std::string(rigidity::to_string(f.kind)));
   }
@@ -136,13 +156,13 @@ py::dict fronts(const Run& run) {
   return out;
 }
 
-/// events as columns: t, kind, x, bodies (each a ';'-joined list, as events.csv)
+/// events as columns: t, kind, x, bodies (each a ';'-joined list), in the scene's units, as events.csv
 py::dict events(const Run& run) {
   std::vector<double> t, x;
   py::list kind, bodies;
   for (const rigidity::RunEvent& e : run.result.events) {
-    t.push_back(e.t);
-    x.push_back(e.x);
+    t.push_back(in_scene_units(run, e.t, rigidity::Dimension::time));
+    x.push_back(in_scene_units(run, e.x, rigidity::Dimension::length));
     kind.append(e.kind);
     std::string joined;
     for (const std::string& b : e.bodies) joined += (joined.empty() ? "" : ";") + b;
@@ -295,6 +315,7 @@ PYBIND11_MODULE(_rigidity, m) {
       .def_property_readonly("snapshots", &snapshots)
       .def_property_readonly("fronts", &fronts)
       .def_property_readonly("events", &events)
+      .def_property_readonly("units", &units)
       .def_property_readonly("warnings", [](const Run& r) { return r.result.warnings; })
       .def_property_readonly("status", [](const Run& r) { return r.result.status; });
 

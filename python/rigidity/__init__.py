@@ -39,12 +39,15 @@ __all__ = [
 
 
 class Result:
-    """A solved scene: `summary` as summary.json, and the outputs the scene asked for.
+    """A solved scene: `summary` as summary.json, and the outputs the scene asked for, in the
+    scene's units (SI in a `units: si` scene), the same numbers as the CSV files.
 
     probes[name][quantity]  -> (t, value), two NumPy arrays
     snapshots               -> dict of NumPy columns t, body, X, quantity, value
     fronts                  -> dict of NumPy columns t0, x0, t1, x1, kind, family
     events                  -> dict of NumPy columns t, kind, x, bodies
+    units                   -> the unit of t and of each quantity (x, X, v, p, ...), and the
+                               "system" ("si" or "natural"): units["p"] is "Pa" in an SI scene
     """
 
     def __init__(self, run):
@@ -54,6 +57,7 @@ class Result:
         self.snapshots = run.snapshots
         self.fronts = run.fronts
         self.events = run.events
+        self.units = run.units
         self.warnings = list(run.warnings)
         self.status = run.status
 

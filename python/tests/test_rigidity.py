@@ -200,8 +200,73 @@ def test_sweep_returns_the_table_against_the_closed_forms():
     v = table["bodies.0.velocity"].astype(float)
     assert len(v) == 19 and np.all(table["exit_code"] == 0)
     np.testing.assert_allclose(table["p_max"], v / (1 - v), rtol=1e-9)           # rho00 v/(1 - v)
-    contact = 2 * np.sqrt((1 - v) / (1 + v))
-    ends = contact < 1.5  # the default scene runs to t = 1.5: a later separation is not in it (NaN)
-    np.testing.assert_array_equal(np.isfinite(table["contact_time"]), ends)
-    np.testing.assert_allclose(table["contact_time"][ends], contact[ends], rtol=1e-9)
-    np.testing.assert_allclose(table["rebound"][ends], -v[ends], rtol=1e-9)
+    np.testing.assert_array_equal(table["bodies.0.velocity"][:3], ["0.05", "0.1", "0.15"])
+    # The sweep runs to t = 2.5, past every separation: each row has its contact time.
+    np.testing.assert_allclose(table["contact_time"], 2 * np.sqrt((1 - v) / (1 + v)), rtol=1e-9)
+    np.testing.assert_allclose(table["rebound"], -v, rtol=1e-9)
+
+
+C = 299792458.0  # m/s
+
+
+def steel_wall(units):
+    """A Hooke steel bar (rho00 = 7850 kg/m^3, V = 5100 m/s, 1 m) at 1000 m/s into a wall,
+    written in SI or, the same scene, in natural units (lengths in m, times in m/c)."""
+    si = units == "si"
+    speed = (lambda v: v) if si else (lambda v: v / C)
+    time = (lambda t: t) if si else (lambda t: t * C)
+    return {
+        "name": "steel_wall",
+        "units": units,
+        "materials": {"steel": {"model": "hooke", "rest_density": 7850.0, "wave_speed": speed(5100.0)}},
+        "bodies": [{"name": "bar", "material": "steel", "position": 0.0, "length": 1.0, "velocity": speed(1000.0)}],
+        "boundaries": {"left": {"type": "free"}, "right": {"type": "wall"}},
+        "time": {"end": time(5e-4)},
+        "outputs": {"probes": [{"name": "wall", "body": "bar", "at": "right", "quantities": ["p", "v", "x"],
+                                "every": time(1e-4)}],
+                    "snapshots": [{"times": [time(2e-4)], "quantities": ["p", "x"], "samples": 3}],
+                    "fronts": True},
+    }
+
+
+def test_an_si_scene_gives_every_array_in_si():
+    si, natural = rigidity.run(steel_wall("si")), rigidity.run(steel_wall("natural"))
+    assert si.units["system"] == "si" and natural.units["system"] == "natural"
+    assert (si.units["t"], si.units["p"], si.units["v"], si.units["x"]) == ("s", "Pa", "m/s", "m")
+    t, p = si.probes["wall"]["p"]
+    t_nat, p_nat = natural.probes["wall"]["p"]
+    np.testing.assert_allclose(t, [0.0, 1e-4, 2e-4, 3e-4, 4e-4, 5e-4], rtol=1e-12, atol=0.0)
+    np.testing.assert_allclose(t, t_nat / C, rtol=1e-12)
+    np.testing.assert_allclose(p, p_nat * C**2, rtol=1e-12)
+    assert p[1] == pytest.approx(4.0035e10, rel=1e-4)  # the issue's wall pressure, Pa
+    np.testing.assert_allclose(si.probes["wall"]["v"][1], natural.probes["wall"]["v"][1] * C, rtol=1e-12)
+    np.testing.assert_allclose(si.probes["wall"]["x"][1], natural.probes["wall"]["x"][1], rtol=1e-12)
+    np.testing.assert_allclose(si.events["t"], natural.events["t"] / C, rtol=1e-12)
+    assert list(si.events["kind"]) == ["separation"]
+    assert si.events["t"][0] == pytest.approx(si.summary["events"][0]["t"], rel=1e-15)
+    np.testing.assert_allclose(si.snapshots["t"], natural.snapshots["t"] / C, rtol=1e-12)
+    np.testing.assert_allclose(si.snapshots["value"][si.snapshots["quantity"] == "p"],
+                               natural.snapshots["value"][natural.snapshots["quantity"] == "p"] * C**2, rtol=1e-12)
+    np.testing.assert_allclose(si.fronts["t1"], natural.fronts["t1"] / C, rtol=1e-12)
+    np.testing.assert_allclose(si.fronts["x1"], natural.fronts["x1"], rtol=1e-12)
+
+
+@pytest.mark.skipif("RIGIDITY_EXECUTABLE" not in os.environ, reason="needs the built rigidity executable")
+def test_an_si_scene_gives_the_numbers_of_the_csv_files(tmp_path):
+    import json
+    import subprocess
+
+    scene = tmp_path / "steel_wall.yaml"
+    scene.write_text(json.dumps(steel_wall("si")))  # JSON is YAML
+    subprocess.run([os.environ["RIGIDITY_EXECUTABLE"], "run", str(scene), "--out", str(tmp_path / "out"), "--quiet"],
+                   check=True)
+    r = rigidity.run(str(scene))
+    probes = np.genfromtxt(tmp_path / "out" / "probes.csv", delimiter=",", names=True, dtype=None, encoding="utf-8")
+    for quantity in ("p", "v", "x"):
+        rows = probes[probes["quantity"] == quantity]
+        t, value = r.probes["wall"][quantity]
+        np.testing.assert_array_equal(t, rows["t"])
+        np.testing.assert_array_equal(value, rows["value"])
+    events = np.genfromtxt(tmp_path / "out" / "events.csv", delimiter=",", names=True, dtype=None, encoding="utf-8")
+    np.testing.assert_array_equal(r.events["t"], np.atleast_1d(events["t"]))
+    np.testing.assert_array_equal(r.events["x"], np.atleast_1d(events["x"]))
