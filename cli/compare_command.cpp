@@ -58,6 +58,20 @@ std::string exact(double value) {
   return out;
 }
 
+/// A natural-unit value in `units`: the shortest text of the value that reads back to it, at 15
+/// significant digits where one does (a speed given as 100 m/s is written 100).
+double value_in(double natural, Dimension dimension, UnitSystem units) {
+  const double value = from_natural(natural, dimension, units);
+  if (!std::isfinite(value)) return value;
+  std::array<char, 32> text{};
+  std::snprintf(text.data(), text.size(), "%.15g", value);
+  const double rounded = std::strtod(text.data(), nullptr);
+  return to_natural(rounded, dimension, units) == natural ? rounded : value;
+}
+std::string number_in(double natural, Dimension dimension, UnitSystem units) {
+  return exact(value_in(natural, dimension, units));
+}
+
 /// `value` with 6 significant digits, for people (the CSV files keep every digit); ±inf as ±∞.
 std::string readable(double value) {
   if (std::isinf(value)) return value > 0 ? "∞" : "-∞";
@@ -93,13 +107,16 @@ std::vector<std::string> split_list(const std::string& text, std::string_view op
   }
 }
 
-/// An impact speed in (0, 1), from `option`'s value.
-double impact_speed(const std::string& text, std::string_view option) {
+/// An impact speed from `option`'s value, in the units of the scene (m/s in an SI scene, else
+/// units of c), returned in natural units.
+double impact_speed(const std::string& text, std::string_view option, UnitSystem units) {
   const std::optional<double> v = parse_number(text);
-  if (!v || !(*v > 0.0 && *v < 1.0))
-    throw usage_error("compare", std::string(option) +
-                                     ": an impact speed must be a number in (0, 1) (units of c), got '" + text + "'");
-  return *v;
+  const double c = from_natural(1.0, Dimension::velocity, units);
+  if (!v || !(*v > 0.0 && *v < c))
+    throw usage_error("compare", std::string(option) + ": an impact speed must be a number in (0, " + exact(c) + ") (" +
+                                     (units == UnitSystem::si ? "m/s: the scene is in SI units" : "units of c") +
+                                     "), got '" + text + "'");
+  return to_natural(*v, Dimension::velocity, units);
 }
 
 /// The materials to compare: those --materials names (an unknown name exits 2 with the
@@ -119,11 +136,11 @@ std::vector<const MaterialInfo*> selected_materials(const Arguments& args) {
   return selected;
 }
 
-/// The speeds of impact.csv: --speeds, else v = k/100, k = 1..99.
-std::vector<double> impact_speeds(const Arguments& args) {
+/// The speeds of impact.csv (natural units): --speeds, else v = k/100, k = 1..99.
+std::vector<double> impact_speeds(const Arguments& args, UnitSystem units) {
   std::vector<double> speeds;
   if (const std::optional<std::string> given = args.value("--speeds")) {
-    for (const std::string& v : split_list(*given, "--speeds")) speeds.push_back(impact_speed(v, "--speeds"));
+    for (const std::string& v : split_list(*given, "--speeds")) speeds.push_back(impact_speed(v, "--speeds", units));
   } else {
     for (int k = 1; k < kDefaultSpeedSteps; ++k) speeds.push_back(static_cast<double>(k) / kDefaultSpeedSteps);
   }
@@ -259,10 +276,36 @@ Candidate set_up(const MaterialInfo& info, const std::vector<ParameterOverride>&
   return c;
 }
 
+/// A material's parameters ("wave_speed=1.7e-05;...", natural units) in `units`, each number
+/// by its declared dimension: the value that reads back to the same natural one, at 15
+/// significant digits where one does ("wave_speed=5100", not 5100.000000000001).
+std::string parameters_in(const MaterialInfo& info, const std::string& natural, UnitSystem units) {
+  if (units == UnitSystem::natural) return natural;
+  std::string out;
+  std::size_t start = 0;
+  while (start <= natural.size() && !natural.empty()) {
+    const std::size_t end = std::min(natural.find(';', start), natural.size());
+    std::string item = natural.substr(start, end - start);
+    const std::size_t eq = item.find('=');
+    if (eq != std::string::npos) {
+      const std::string key = item.substr(0, eq);
+      const auto spec = std::find_if(info.parameters.begin(), info.parameters.end(),
+                                     [&key](const ParameterSpec& p) { return p.name == key; });
+      const std::optional<double> value = parse_number(item.substr(eq + 1));
+      if (spec != info.parameters.end() && value) item = key + "=" + number_in(*value, spec->dimension, units);
+    }
+    out += (out.empty() ? "" : ";") + item;
+    start = end + 1;
+  }
+  return out;
+}
+
 /// The materials a scene file declares, as it builds them (its parameters, checked as a run
 /// checks them), under the scene's names; --materials picks some of them by those names.
-std::vector<Candidate> scene_candidates(const std::string& path, const Arguments& args) {
+/// `units` becomes the scene's.
+std::vector<Candidate> scene_candidates(const std::string& path, const Arguments& args, UnitSystem& units) {
   const Scene scene = load_scene_file(path);  // an invalid scene: InputError, file/line/key
+  units = scene.units;
   std::vector<std::string> wanted;
   if (const std::optional<std::string> named = args.value("--materials")) wanted = split_list(*named, "--materials");
   std::vector<std::string> declared;
@@ -285,7 +328,8 @@ std::vector<Candidate> scene_candidates(const std::string& path, const Arguments
     c.info = &MaterialRegistry::instance().at(decl.model);
     c.name = name;
     c.material = decl.material;
-    c.parameters = "model=" + decl.model + (decl.parameters.empty() ? "" : ";" + decl.parameters);
+    c.parameters =
+        "model=" + decl.model + (decl.parameters.empty() ? "" : ";" + parameters_in(*c.info, decl.parameters, units));
     out.push_back(std::move(c));
   }
   return out;
@@ -303,6 +347,7 @@ struct Comparison {
   double cs_unstrained = 0.0;  ///< c_s at s = 1
   double max_pressure = 0.0;
   double max_tension = 0.0;
+  bool parts_at_max_tension = false;  ///< the maximum tension is the cavitation pressure
   bool linearly_degenerate = false;
   std::optional<Impact> impact;       ///< at the --impact-speed; none if crushed
   std::optional<double> crush_speed;  ///< none if no impact speed crushes it
@@ -329,6 +374,7 @@ Comparison compare(const Candidate& c, double impact_speed, const std::vector<do
   out.candidate = &c;
   out.max_pressure = m.max_pressure();
   out.max_tension = m.max_tension();
+  out.parts_at_max_tension = out.max_tension == m.cavitation_pressure();
   out.linearly_degenerate = m.linearly_degenerate();
   const std::optional<CurvePoint> natural = curve_point(m, Stretch::natural());
   if (!natural) throw NumericalError(c.name + ": the natural state s = 1 is not admissible or not finite");
@@ -363,6 +409,33 @@ Comparison compare(const Candidate& c, double impact_speed, const std::vector<do
   return out;
 }
 
+/// `r` with every speed, pressure and energy density in `units` (the tables, charts and
+/// summary print what they are given).
+Comparison in_units(Comparison r, UnitSystem units) {
+  const auto v = [units](double& x) { x = value_in(x, Dimension::velocity, units); };
+  const auto p = [units](double& x) { x = value_in(x, Dimension::pressure, units); };
+  v(r.cs_unstrained);
+  p(r.max_pressure);
+  p(r.max_tension);
+  if (r.impact) {
+    v(r.impact->v);
+    p(r.impact->p);
+    v(r.impact->front_speed);
+  }
+  for (Impact& i : r.impacts) {
+    v(i.v);
+    p(i.p);
+    v(i.front_speed);
+  }
+  if (r.crush_speed) v(*r.crush_speed);
+  for (CurvePoint& q : r.curve) {
+    p(q.p);
+    p(q.e);
+    v(q.cs);
+  }
+  return r;
+}
+
 // ---- the tables ----------------------------------------------------------------------------
 
 void write_file(const fs::path& path, const std::string& text) {
@@ -375,7 +448,7 @@ void write_file(const fs::path& path, const std::string& text) {
 /// materials.csv: one row per material. Empty cells: no classical solution at the impact
 /// speed (impact_s, impact_p, impact_front_speed), or no speed that crushes it
 /// (crush_speed); unbounded limits are ±inf.
-std::string materials_csv(const std::vector<Comparison>& rows, double impact_speed) {
+std::string materials_csv(const std::vector<Comparison>& rows, double impact_speed, UnitSystem units) {
   std::string out =
       "material,parameters,rest_density,cs_unstrained,max_pressure,max_tension,linearly_degenerate,"
       "impact_v,impact_s,impact_p,impact_front_speed,crush_speed\n";
@@ -383,7 +456,7 @@ std::string materials_csv(const std::vector<Comparison>& rows, double impact_spe
     const Candidate& c = *r.candidate;
     out += csv_field(c.name) + "," + csv_field(c.parameters) + "," + exact(c.material->rest_density()) + "," +
            exact(r.cs_unstrained) + "," + exact(r.max_pressure) + "," + exact(r.max_tension) + "," +
-           (r.linearly_degenerate ? "true" : "false") + "," + exact(impact_speed) + ",";
+           (r.linearly_degenerate ? "true" : "false") + "," + number_in(impact_speed, Dimension::velocity, units) + ",";
     out += r.impact ? exact(r.impact->s) + "," + exact(r.impact->p) + "," + exact(r.impact->front_speed)
                     : std::string(",,");
     out += "," + (r.crush_speed ? exact(*r.crush_speed) : std::string()) + "\n";
@@ -463,7 +536,7 @@ std::string material_curve(const std::string& file, const Comparison& r, std::si
          (i % 2 == 0 ? "1" : "(10,6)") + " lc rgb '" + colour(i) + "' title " + gnuplot_quote(legend(r));
 }
 
-std::string stress_strain_chart(const std::vector<Comparison>& rows) {
+std::string stress_strain_chart(const std::vector<Comparison>& rows, UnitSystem units) {
   // The traction side sets the scale: the lowest p on the chart (or the lowest maximum
   // tension), with the compression side shown to three times that depth.
   double depth = 0.0, top_limit = 0.0;
@@ -473,7 +546,7 @@ std::string stress_strain_chart(const std::vector<Comparison>& rows) {
     if (std::isfinite(r.max_tension)) depth = std::max(depth, -r.max_tension);
     if (std::isfinite(r.max_pressure)) top_limit = std::max(top_limit, r.max_pressure);
   }
-  if (depth == 0.0) depth = 0.5;
+  if (depth == 0.0) depth = from_natural(0.5, Dimension::pressure, units);
   const double y_min = -1.25 * depth, y_max = std::max(3.0 * depth, 1.25 * top_limit);
 
   std::string out = chart_header(
@@ -482,7 +555,8 @@ std::string stress_strain_chart(const std::vector<Comparison>& rows) {
       "stress_strain", 1000, 700);
   out += "set title 'Stress-strain law p(s), compression s < 1 and traction s > 1 (after Fig. 3 of physics/0307019)'\n";
   out += "set xlabel 's = proper length / natural length'\n";
-  out += "set ylabel 'p  [natural units, c = 1; compression > 0]'\n";
+  out += units == UnitSystem::si ? "set ylabel 'p  [Pa; compression > 0]'\n"
+                                 : "set ylabel 'p  [natural units, c = 1; compression > 0]'\n";
   out += "set xrange [0:" + exact(kChartStretchMax) + "]\n";
   out += "set yrange [" + exact(y_min) + ":" + exact(y_max) + "]\n";
   out += "set xzeroaxis lt -1\n";
@@ -495,25 +569,26 @@ std::string stress_strain_chart(const std::vector<Comparison>& rows) {
     if (std::isfinite(r.max_pressure) && r.max_pressure <= y_max)
       out += limit_line(r.max_pressure, colour(i), name + ": maximum pressure " + readable(r.max_pressure), false);
     if (std::isfinite(r.max_tension) && r.max_tension >= y_min)
-      out += limit_line(r.max_tension, colour(i),
-                        name + (r.max_tension == r.candidate->material->cavitation_pressure()
-                                    ? ": carries no tension below p = " + readable(r.max_tension) + " (it parts)"
-                                    : ": maximum tension " + readable(r.max_tension)),
-                        true);
+      out += limit_line(
+          r.max_tension, colour(i),
+          name + (r.parts_at_max_tension ? ": carries no tension below p = " + readable(r.max_tension) + " (it parts)"
+                                         : ": maximum tension " + readable(r.max_tension)),
+          true);
     elements.push_back(material_curve("stress_strain.csv", r, i, 2, 3));
   }
   return out + plot_lines(elements);
 }
 
-std::string sound_speed_chart(const std::vector<Comparison>& rows) {
+std::string sound_speed_chart(const std::vector<Comparison>& rows, UnitSystem units) {
+  const std::string c = exact(from_natural(1.0, Dimension::velocity, units));
   std::string out = chart_header("The sound speed c_s(s) = sqrt(dp/de) of every material.", "sound_speed", 1000, 650);
   out += "set title 'Sound speed c_s(s)'\n";
   out += "set xlabel 's = proper length / natural length'\n";
-  out += "set ylabel 'c_s  [c]'\n";
+  out += "set ylabel 'c_s  [" + std::string(units == UnitSystem::si ? "m/s" : "c") + "]'\n";
   out += "set xrange [0:" + exact(kChartStretchMax) + "]\n";
-  out += "set yrange [0:1.1]\n";
-  out += "set arrow from graph 0, first 1 to graph 1, first 1 nohead lw 1.5 lc rgb '#444444'\n";
-  out += "set label 'c' at graph 0.01, first 1 offset 0,0.6 tc rgb '#444444'\n";
+  out += "set yrange [0:" + exact(1.1 * from_natural(1.0, Dimension::velocity, units)) + "]\n";
+  out += "set arrow from graph 0, first " + c + " to graph 1, first " + c + " nohead lw 1.5 lc rgb '#444444'\n";
+  out += "set label 'c' at graph 0.01, first " + c + " offset 0,0.6 tc rgb '#444444'\n";
   out += "set arrow from 1, graph 0 to 1, graph 1 nohead dt 3 lc rgb '#888888'  # the natural state s = 1\n";
   out += "set key bottom right box opaque\n";
   std::vector<std::string> elements;
@@ -522,15 +597,17 @@ std::string sound_speed_chart(const std::vector<Comparison>& rows) {
   return out + plot_lines(elements);
 }
 
-std::string impact_chart(const std::vector<Comparison>& rows) {
+std::string impact_chart(const std::vector<Comparison>& rows, UnitSystem units) {
+  const double c = from_natural(1.0, Dimension::velocity, units);
+  const std::string speed_unit = units == UnitSystem::si ? "m/s" : "c";
   std::string out = chart_header(
       "Wall impacts: an unstrained bar at speed v strikes a fixed wall. Pressure and stretch behind the reflected "
       "front and the front's speed relative to the unstrained bar (exact Riemann solver); dotted: maximum pressure "
       "and the speed that crushes the bar.",
       "impact", 1000, 1250);
   out += "set multiplot layout 3,1 title 'Wall impact of an unstrained bar at speed v'\n";
-  out += "set xlabel 'v  [c]'\n";
-  out += "set xrange [0:1]\n";
+  out += "set xlabel 'v  [" + speed_unit + "]'\n";
+  out += "set xrange [0:" + exact(c) + "]\n";
   out += "set key top left box opaque  # in the first panel only: the colours hold for all three\n";
   std::string crush_lines;
   for (std::size_t i = 0; i < rows.size(); ++i)
@@ -547,7 +624,8 @@ std::string impact_chart(const std::vector<Comparison>& rows) {
   }
   if (pressure.empty()) return out + "unset multiplot\n";  // no speed has a solution: empty panels are not drawn
 
-  out += "set title 'Pressure behind the front'\nset ylabel 'p  [rho00 c^2]'\nset logscale y\n" + crush_lines;
+  out += "set title 'Pressure behind the front'\nset ylabel 'p  [" +
+         std::string(units == UnitSystem::si ? "Pa" : "rho00 c^2") + "]'\nset logscale y\n" + crush_lines;
   for (std::size_t i = 0; i < rows.size(); ++i)
     if (std::isfinite(rows[i].max_pressure))
       out += limit_line(rows[i].max_pressure, colour(i),
@@ -557,19 +635,21 @@ std::string impact_chart(const std::vector<Comparison>& rows) {
   out += "set title 'Stretch behind the front'\nset ylabel 's'\nset yrange [0:1.05]\n" + crush_lines;
   out += plot_lines(stretch);
   out += "unset label\nunset arrow\n";
-  out += "set title 'Front speed relative to the unstrained bar'\nset ylabel 'u  [c]'\nset yrange [0:1.05]\n" +
-         crush_lines;
+  out += "set title 'Front speed relative to the unstrained bar'\nset ylabel 'u  [" + speed_unit +
+         "]'\nset yrange [0:" + exact(1.05 * c) + "]\n" + crush_lines;
   out += plot_lines(front);
   return out + "unset multiplot\n";
 }
 
 // ---- the summary ------------------------------------------------------------------------------
 
-void print_summary(std::ostream& out, const std::vector<Comparison>& rows, double impact_speed,
+void print_summary(std::ostream& out, const std::vector<Comparison>& rows, double impact_speed, UnitSystem units,
                    const std::vector<std::string>& notes, const fs::path& dir, const std::vector<std::string>& files) {
-  const std::string at = " at v = " + readable(impact_speed);
+  const std::string at = " at v = " + readable(value_in(impact_speed, Dimension::velocity, units));
   out << "## rigidity compare: " << rows.size() << (rows.size() == 1 ? " material" : " materials") << "\n\n";
-  out << "Natural units (c = 1). Wall impact: an unstrained bar at speed v strikes a fixed wall; s and p behind the\n"
+  out << (units == UnitSystem::si ? "SI units (speeds in m/s, pressures in Pa, densities in kg/m^3)"
+                                  : "Natural units (c = 1)")
+      << ". Wall impact: an unstrained bar at speed v strikes a fixed wall; s and p behind the\n"
          "reflected front (exact Riemann solver), u its speed relative to the unstrained bar; crushed: no classical\n"
          "solution.\n\n";
   out << "| material | parameters | rest density | c_s(1) | max pressure | max tension | linearly degenerate | s" << at
@@ -617,21 +697,24 @@ int compare_command(std::span<const std::string> args, std::ostream& out) {
     throw usage_error("compare", "--param and --scene exclude each other: the scene file gives the parameters");
   const std::vector<const MaterialInfo*> selected =
       scene_file ? std::vector<const MaterialInfo*>{} : selected_materials(parsed);
-  const double impact_v = parsed.has("--impact-speed") ? impact_speed(*parsed.value("--impact-speed"), "--impact-speed")
-                                                       : kDefaultImpactSpeed;
-  const std::vector<double> speeds = impact_speeds(parsed);
+  // The speeds are in the scene's units: m/s for an SI scene.
+  UnitSystem units = UnitSystem::natural;
+  std::vector<Candidate> candidates;
+  if (scene_file) candidates = scene_candidates(*scene_file, parsed, units);
+  const double impact_v = parsed.has("--impact-speed")
+                              ? impact_speed(*parsed.value("--impact-speed"), "--impact-speed", units)
+                              : kDefaultImpactSpeed;
+  const std::vector<double> speeds = impact_speeds(parsed, units);
   const std::vector<ParameterOverride> overrides = parameter_overrides(parsed);
   check_overrides(overrides, selected);
 
   // A material named on the command line must be set up; one found in the registry is
   // skipped, with a note, if it cannot be (say, a required text parameter without default).
-  std::vector<Candidate> candidates;
   std::vector<std::string> notes;
   const auto warn = [&notes](const std::string& warning) {
     notes.push_back(warning);
     std::cerr << "warning: " << warning << "\n";
   };
-  if (scene_file) candidates = scene_candidates(*scene_file, parsed);
   for (const MaterialInfo* info : selected) {
     try {
       candidates.push_back(set_up(*info, overrides));
@@ -645,7 +728,7 @@ int compare_command(std::span<const std::string> args, std::ostream& out) {
 
   std::vector<Comparison> rows;
   for (const Candidate& c : candidates) {
-    rows.push_back(compare(c, impact_v, speeds));
+    rows.push_back(in_units(compare(c, impact_v, speeds), units));
     for (const std::string& warning : rows.back().warnings) warn(warning);
   }
 
@@ -654,15 +737,15 @@ int compare_command(std::span<const std::string> args, std::ostream& out) {
   fs::create_directories(dir, error);
   if (!fs::is_directory(dir, error))
     throw CommandError(kExitInvalidInput, "cannot create the output directory " + dir.string());
-  write_file(dir / "materials.csv", materials_csv(rows, impact_v));
+  write_file(dir / "materials.csv", materials_csv(rows, impact_v, units));
   write_file(dir / "stress_strain.csv", stress_strain_csv(rows));
   write_file(dir / "impact.csv", impact_csv(rows));
   std::vector<std::string> files{"materials.csv", "stress_strain.csv", "impact.csv"};
 
-  std::vector<std::pair<std::string, std::string>> charts{{"stress_strain", stress_strain_chart(rows)},
-                                                          {"sound_speed", sound_speed_chart(rows)}};
+  std::vector<std::pair<std::string, std::string>> charts{{"stress_strain", stress_strain_chart(rows, units)},
+                                                          {"sound_speed", sound_speed_chart(rows, units)}};
   if (std::any_of(rows.begin(), rows.end(), [](const Comparison& r) { return !r.impacts.empty(); })) {
-    charts.emplace_back("impact", impact_chart(rows));
+    charts.emplace_back("impact", impact_chart(rows, units));
   } else {
     notes.push_back("no impact chart: no material has a classical solution at the speeds asked for");
   }
@@ -681,7 +764,7 @@ int compare_command(std::span<const std::string> args, std::ostream& out) {
   }
   for (const auto& chart : charts) files.push_back(chart.first + ".gp");
 
-  print_summary(out, rows, impact_v, notes, dir, files);
+  print_summary(out, rows, impact_v, units, notes, dir, files);
   return kExitOk;
 }
 

@@ -395,6 +395,38 @@ TEST_F(CliTest, CompareTakesTheNamedMaterialsOfASceneFile) {
   EXPECT_FALSE(fs::exists(dir() / "cmp3"));
 }
 
+TEST_F(CliTest, CompareOfAnSiSceneTakesAndPrintsSi) {
+  // Steel as a Hooke material (rho00 = 7850 kg/m^3, V = 5100 m/s): speeds in m/s, the tables
+  // in m/s and Pa. Behind a Hooke front s* = γ (V − v)/V, and the closed form of the wall
+  // pressure at 1000 m/s is 4.0035e10 Pa.
+  write_file("steel.yaml",
+             "name: steel\nunits: si\nmaterials: {steel: {model: hooke, rest_density: 7850, wave_speed: 5100}}\n"
+             "bodies: [{name: bar, material: steel, length: 1}]\ntime: {end: 1e-3}\n");
+  const CliOutcome r = rigidity("compare --scene steel.yaml --speeds 100,1000 --impact-speed 1000 --out cmp");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const double c = 299792458.0;
+  const Csv materials = read_csv(dir() / "cmp" / "materials.csv");
+  ASSERT_EQ(materials.rows.size(), 1u);
+  EXPECT_EQ(materials.rows[0].at("parameters"), "model=hooke;wave_speed=5100");
+  EXPECT_NEAR(number(materials.rows[0], "cs_unstrained"), 5100.0, 1e-9);
+  EXPECT_EQ(materials.rows[0].at("impact_v"), "1000");
+  EXPECT_NEAR(number(materials.rows[0], "impact_p"), 4.0035e10, 1e6);
+  EXPECT_NEAR(number(materials.rows[0], "crush_speed"), 5100.0, 1e-6);
+  const Csv impact = read_csv(dir() / "cmp" / "impact.csv");
+  ASSERT_EQ(impact.rows.size(), 2u);
+  EXPECT_EQ(impact.rows[0].at("v"), "100");
+  EXPECT_EQ(impact.rows[1].at("v"), "1000");
+  for (const auto& row : impact.rows) {
+    const double v = number(row, "v");
+    EXPECT_NEAR(number(row, "s"), (5100.0 - v) / 5100.0 / std::sqrt(1.0 - (v / c) * (v / c)), 1e-12);
+  }
+  EXPECT_TRUE(contains(r.out, "SI units")) << r.out;
+  // A speed of c or more is refused in the scene's units.
+  const CliOutcome fast = rigidity("compare --scene steel.yaml --speeds 0.5,3e8 --out cmp2");
+  EXPECT_EQ(fast.exit_status, 2);
+  EXPECT_TRUE(contains(fast.err, "m/s")) << fast.err;
+}
+
 TEST_F(CliTest, CompareHasHelp) {
   const CliOutcome r = rigidity("compare --help");
   EXPECT_EQ(r.exit_status, 0);
