@@ -251,6 +251,7 @@ class SceneBuilder {
     }
     out.times.push_back(rows.times.back());
     out.rapidities.push_back(rows.rapidities.back());
+    out.ramps = true;
     return out;
   }
 

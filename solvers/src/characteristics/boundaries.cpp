@@ -112,7 +112,9 @@ void Tracker::handle(const Event& e) {
       ++w.version;
       schedule_piston(e.a);
       if (w.attached != kNone) {
+        emit_smooth_ = w.motion.ramps;
         resolve(w.attached, w.attached, t);
+        emit_smooth_ = false;
       } else {
         schedule_wall_gap(e.a);
       }

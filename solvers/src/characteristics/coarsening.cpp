@@ -105,6 +105,7 @@ int Tracker::merge_neighbours(int id, double t) {
     const double strength_q = std::abs(wave_strength(m, nodes_[p].right.state, R.state, family));
     const int kept = strength_p >= strength_q ? p : q;
     const int gone = kept == p ? q : p;
+    nodes_[kept].smooth = nodes_[p].smooth && nodes_[q].smooth;
     // The merged front carries both fronts' errors, what their fan steps booked, and the merge's.
     double carried = nodes_[p].carried + nodes_[q].carried + best_cost;
     for (int n : {p, q}) {
@@ -229,11 +230,12 @@ bool Tracker::merge_across(int p, int q, double t) {
   // Apply: p and q leave; one front of family f enters at X̄.
   error_merges_ += cost;
   ++merged_;
-  const int start = extend_left ? left_of_p : left_of_p;
+  const int start = left_of_p;
   double X_cursor = segments_.front().a;
   double x_cursor = extend_left ? nodes_[left_of_p].x_at(t) : nodes_[p].x_at(t);
   const double carried = nodes_[p].carried + nodes_[q].carried + cost;
   nodes_[p].carried = nodes_[q].carried = 0.0;
+  const bool smooth = nodes_[p].smooth && nodes_[q].smooth;
   kill_node(p, t);
   kill_node(q, t);
   const int merged = new_node(NodeKind::front, nodes_[start].piece);
@@ -245,6 +247,7 @@ bool Tracker::merge_across(int p, int q, double t) {
   mn.born = t;
   mn.strength = std::abs(j_after_q - j_before);
   mn.carried = carried;
+  mn.smooth = smooth;
   int cursor = start;
   const auto advance = [&](double X, const State& st) {
     x_cursor += (X - X_cursor) * label_density(st);

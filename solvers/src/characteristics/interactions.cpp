@@ -209,6 +209,7 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     kill_node(a, t);
     error_lost_ += carried[0];  // the C− wave held back (its strength is booked above)
     nodes_[b].carried = carried[1];
+    nodes_[b].smooth = false;  // two fronts of one family met
     set_front(b, +1, kinds[1], *m, left, right, t, X, x, off_curve[1], born[1], strength_plus);
     schedule_meet(keep_before);
     schedule_meet(b);
@@ -242,6 +243,12 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     at[1] = &star_region.hyperbolic;
     at[2] = &hyperbolic_of(nb.right);
   }
+  // Each wave goes on as smooth as it came in; two of one family meeting make a jump.
+  const bool smooth_on = na.family != nb.family;
+  const bool smooth_minus = smooth_on && (na.family < 0 ? na.smooth : nb.smooth);
+  const bool smooth_plus = smooth_on && (na.family > 0 ? na.smooth : nb.smooth);
+  na.smooth = smooth_minus;
+  nb.smooth = smooth_plus;
   set_front(a, -1, kinds[0], *m, left, star, t, X, x, off_curve[0], born[0], strength_minus,
             degenerate ? &star_region.speeds[0] : nullptr, laws_minus, at[0], at[1]);
   set_front(b, +1, kinds[1], *m, star, right, t, X, x, off_curve[1], born[1], strength_plus,
@@ -408,6 +415,7 @@ void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, in
     n.x0 = x;
     n.born = t;
     n.strength = std::abs(wave_strength(m, outer, inner, family));
+    n.smooth = emit_smooth_ || (!w.shock && !m.linearly_degenerate());  // a fan's steps are smooth
     if (w.shock) {
       n.front_kind = FrontKind::shock;
       const FrontSpeeds sp =
@@ -552,6 +560,11 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   // speed in the labels): shared among the outgoing waves below.
   double carried_in = 0.0, sweep_in = 0.0, fastest_in = 0.0, released = 0.0;
   int fronts_in = 0;
+  // The waves leave smooth if every front that came in was a smooth step and no two of one
+  // family in one piece met (steps of a compression wave that meet make a shock), or if a
+  // piston ramp's step is what starts them (handle sets emit_smooth_ for it).
+  bool smooth_in = true;
+  int families_in[2] = {kNone, kNone};  // the piece each family came in from
   for (int id : group) {
     Node& n = nodes_[id];
     const double defect = close_defect(n, t);
@@ -559,6 +572,9 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
       released += defect;  // a wave held back here leaves now, late by as much
       continue;
     }
+    int& came_from = families_in[n.family > 0 ? 1 : 0];
+    smooth_in = smooth_in && n.smooth && came_from != n.piece;
+    came_from = n.piece;
     carried_in += n.carried;
     n.carried = 0.0;
     // A front back from a light piece has its lab line but no label speed: that of its
@@ -644,6 +660,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   }
 
   // Emit the waves.
+  emit_smooth_ = !sol.parted && (fronts_in > 0 ? smooth_in : emit_smooth_);
   emitted_left_.clear();
   emitted_right_.clear();
   WaveStates& wl = wave_left_;
@@ -661,6 +678,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     // right state) is its rightmost front.
     std::reverse(emitted_right_.begin(), emitted_right_.end());
   }
+  emit_smooth_ = false;
 
   for (int f = 0; f < 2; ++f) {
     const std::vector<int>& out = f == 0 ? emitted_left_ : emitted_right_;

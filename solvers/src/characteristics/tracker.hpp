@@ -171,6 +171,11 @@ struct Node {
   /// Shocks: the energy removed per unit time, from the states set with the front (NaN: not
   /// known, account_front_end computes it from the regions).
   double dissipation = std::numeric_limits<double>::quiet_NaN();
+  /// Fronts: one of the steps that stand for a smooth wave (a fan's, a piston ramp's, and
+  /// what such steps become as they cross, reflect, transmit and merge), not a jump of the
+  /// solution: samples reconstruct the wave between it and its neighbours of its family
+  /// (Tracker::reconstruct).
+  bool smooth = false;
 
   [[nodiscard]] double X_at(double t) const { return X0 + dXdt * (t - t0); }
   [[nodiscard]] double x_at(double t) const { return x0 + dxdt * (t - t0); }
@@ -512,6 +517,22 @@ class Tracker {
   /// The state at label X at time t in the region right of node n (the exact fan's where X
   /// lies in an uncrossed one, see fan_sample), and the lab position of X.
   void region_at(int n, double X, double t, Region& region, double& x) const;
+  /// The nearest front of `family` from node `from` on, walking towards `step` (prev or
+  /// next), within the strip a smooth wave of that family may fill: kNone at an end, an
+  /// interface, or a front that is a true jump (a shock or a jump not made of smooth steps).
+  int smooth_neighbour(int from, int family, int Node::*step) const;
+  /// The state at label X of the region right of node n with the smooth waves through it
+  /// reconstructed: where that region is the strip between two steps A < B of one family's
+  /// smooth wave, the family's invariant there varies linearly, J(X) = J_region + (j_A +
+  /// j_B)/2 · (X − X_mid)/(X_B − X_A), with j the steps' jumps: the line through the values
+  /// at the steps' own characteristics (the means of their two sides), which the steps'
+  /// speeds follow to second order. A strip more than kPlateauRatio times as wide as the
+  /// narrower of its neighbouring strips of the wave, or with no such neighbour, is a plateau
+  /// between two waves and stays constant.
+  /// The lab position moves with it by dx, the integral of the density's change from X_A,
+  /// which vanishes at both steps. Returns false where nothing is reconstructed.
+  bool reconstruct(int n, double X, double t, State& state, double& dx) const;
+  static constexpr double kPlateauRatio = 3.0;
   // ---- the error budget (see README "What the tolerance means") --------------------
   double weak_ = 0.0;                   ///< strength |ΔJ| below which an interface or contact emits no wave
   double weak_merging_ = 0.0;           ///< strength below which two fronts of one family merging emit no reflection
@@ -682,6 +703,11 @@ class Tracker {
   double impulse_ = 0.0, wall_work_ = 0.0, dissipated_ = 0.0;
   double last_interaction_t_ = -1.0;
   long interactions_at_this_t_ = 0;
+
+  /// Fronts emitted by the interaction being resolved continue smooth waves: every front
+  /// that came in was a smooth step and none of them met another of its own family, or a
+  /// piston ramp's step changes the piston's speed.
+  bool emit_smooth_ = false;
 
   // scratch buffers reused by every interaction
   std::vector<int> group_, emitted_left_, emitted_right_, touched_;

@@ -48,6 +48,9 @@ enum class BoundaryType { free, wall, piston };
 struct PistonMotion {
   std::vector<double> times;
   std::vector<double> rapidities;
+  /// The table is interpolated linearly and these are the steps of its ramps: each change of
+  /// speed emits a step of a smooth wave, not a jump.
+  bool ramps = false;
 };
 
 struct BoundaryDecl {
