@@ -541,19 +541,23 @@ RiemannSolution solve_riemann(const Material& left_material, const State& left, 
   if (!domain.ok()) return failed(domain);
   const Domain& d = domain.value;
   const Mismatch f(lc, rc, d);
+  // Whether the sides move together exactly at the parting pressure (touching at rest,
+  // unstrained): the contact holds there, at the end of the domain, and nothing parts.
+  bool level_at_parting = false;
   if (d.parting) {
     // If even at the parting pressure the left side does not catch up with the right, they part.
     const Outcome<double> at_parting = f(d.hi);
     if (!at_parting.ok()) return failed(at_parting);
-    if (at_parting.value <= 0.0) return parted_pair(lc, rc, min_pressure);
+    if (at_parting.value < 0.0) return parted_pair(lc, rc, min_pressure);
+    level_at_parting = at_parting.value == 0.0;
   }
   // Start from the left state, or for one material on both sides from the star state the
   // rarefaction curves would give (exact for weak waves), with a step to match; the guess is
-  // only a guess, so a failed one is not used.
+  // only a guess, so a failed one is not used. A root at the parting pressure is the start.
   const auto inside = [&d](double z) { return std::max(d.lo, std::min(z, d.hi)); };
-  double start = inside(left.stretch.log());
+  double start = level_at_parting ? d.hi : inside(left.stretch.log());
   double first_step = 0.5;
-  if (&left_material == &right_material) {
+  if (!level_at_parting && &left_material == &right_material) {
     const double psi_guess = 0.5 * (lc.invariant() - rc.invariant());
     const Solved<Stretch> guess = left_material.stretch_at_psi(std::min(psi_guess, left_material.psi_max()));
     if (guess.ok()) {

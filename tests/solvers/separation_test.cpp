@@ -113,5 +113,28 @@ TEST(Separation, PushOnlyContactPartsExactlyWhenItsPressureWouldTurnNegativeForE
   EXPECT_GT(held, 10);
 }
 
+TEST(Separation, BodiesAtRestInContactStayInContactWhateverTheirMaterials) {
+  // Unstrained and at rest, touching: the contact holds at p = 0 and nothing happens, for
+  // one material on both sides and for two (the parting test then compares the sides'
+  // velocities at the parting pressure, equal here, not only the star state's pressure).
+  const std::vector<std::string> materials = {"{model: rigid}", "{model: hooke, wave_speed: 0.5, rest_density: 2.0}",
+                                              "{model: rigid_fluid, rest_density: 3.0}"};
+  for (const std::string& left : materials)
+    for (const std::string& right : materials)
+      for (const std::string method : {"characteristics", "finite_volume"}) {
+        SCOPED_TRACE(left + " | " + right + " | " + method);
+        const std::string yaml = "name: at_rest\nmaterials: {a: " + left + ", b: " + right +
+                                 "}\nbodies:\n  - {name: plate1, material: a, position: 0.0, length: 1.0}\n"
+                                 "  - {name: plate2, material: b, position: 1.0, length: 0.5}\n"
+                                 "boundaries: {right: {type: wall}}\nsolver: {method: " +
+                                 method + "}\ntime: {end: 3.0}\n";
+        const RunResult r = solve(load_scene_string(yaml, "<test>"));
+        EXPECT_TRUE(r.events.empty()) << r.events.front().kind << " at t = " << r.events.front().t;
+        ASSERT_EQ(r.bodies.size(), 2u);
+        EXPECT_EQ(r.bodies[0].velocity_mean, 0.0);
+        EXPECT_EQ(r.bodies[1].velocity_mean, 0.0);
+      }
+}
+
 }  // namespace
 }  // namespace rigidity
