@@ -420,7 +420,7 @@ int run_command(std::span<const std::string> args, std::ostream& out) {
     // an exception leaves nothing behind.
     StreamingRecorder files(scene, dir);
     WatchingRecorder recorder(scene, files);
-    const StopOnSignals stop_on_signals;
+    const StopOnSignals stop_on_signals(quiet);
     std::optional<ProgressLine> progress;
     if (!quiet && ::isatty(STDERR_FILENO) == 1) {
       progress.emplace(scene);

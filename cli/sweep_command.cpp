@@ -138,7 +138,7 @@ int sweep_command(std::span<const std::string> args, std::ostream& out) {
     // Rank 0 reports the errors; the other ranks only run cases.
     try {
       const Sweep sweep = load_sweep_file(file);
-      const StopOnSignals stop_on_signals;
+      const StopOnSignals stop_on_signals(true);  // rank 0 says what happens
       mpi_worker(sweep, parsed.value("--out").value_or("out/" + std::filesystem::path(file).stem().string()));
     } catch (const std::exception&) {
       return kExitInvalidInput;
@@ -163,7 +163,7 @@ int sweep_command(std::span<const std::string> args, std::ostream& out) {
   SweepOutcome outcome;
   try {
     clear_interrupt();
-    const StopOnSignals stop_on_signals;
+    const StopOnSignals stop_on_signals(quiet);
 #ifdef RIGIDITY_HAVE_MPI
     if (mpi && mpi->size() > 1) {
       outcome = run_sweep(sweep, options, mpi_dispatcher(mpi->size()));

@@ -13,6 +13,7 @@
 /// This header is private to the executable.
 
 #include <csignal>
+#include <cstdint>
 #include <filesystem>
 #include <iosfwd>
 #include <optional>
@@ -99,10 +100,17 @@ int sweep_command(std::span<const std::string> args, std::ostream& out);
 /// While in scope, SIGINT (Ctrl-C) and SIGTERM (kill, timeout, a batch system's time
 /// limit) ask the running solve or sweep to stop cleanly (request_interrupt): its outputs up
 /// to then are written, with status interrupted, and no temporary directory is left
-/// behind. A second signal ends the process at once, as usual. Shared by `run` and `sweep`.
+/// behind. The first signal writes a notice on stderr (unless quiet). A repeated SIGTERM,
+/// and a SIGINT within kGraceNs of the first signal, are the same request (GNU timeout
+/// signals the program and then its process group); a Ctrl-C after that ends the process at
+/// once, by SIGINT, without its outputs. After a signal the handler stays installed to the
+/// end of the process. Shared by `run` and `sweep`.
 class StopOnSignals {
  public:
-  StopOnSignals();
+  /// How long after the first signal a SIGINT is still taken as the same request [ns].
+  static constexpr std::int64_t kGraceNs = 500'000'000;
+
+  explicit StopOnSignals(bool quiet = false);
   ~StopOnSignals();
   StopOnSignals(const StopOnSignals&) = delete;
   StopOnSignals& operator=(const StopOnSignals&) = delete;

@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <regex>
 #include <string>
 #include <thread>
@@ -244,44 +245,67 @@ pid_t start_rigidity(const fs::path& dir, const std::vector<std::string>& args) 
 
 class CliSignalTest : public CliTest {
  protected:
-  /// Starts a run of minutes, sends `signal` once it is under way, and checks that it stopped
-  /// cleanly: exit `expected_exit`, status interrupted, outputs up to then renamed into place.
-  void expect_signal_stops_run_cleanly(int signal, int expected_exit, const char* cause);
+  /// Starts a run of minutes into dir()/run, of a bar of `segments` Hooke segments, and
+  /// returns once it is under way.
+  pid_t start_long_run(int segments);
+  /// Whether the run's temporary directory is there (it is renamed into place at the end).
+  bool temporary_directory_exists();
+  /// Starts a run of minutes, sends `signal` once it is under way (and again `again` later,
+  /// if given), and checks that it stopped cleanly: exit `expected_exit`, status
+  /// interrupted, outputs up to then renamed into place.
+  void expect_signal_stops_run_cleanly(int signal, int expected_exit, const char* cause, int segments = 300,
+                                       std::optional<std::chrono::milliseconds> again = std::nullopt);
 };
 
-void CliSignalTest::expect_signal_stops_run_cleanly(int signal, int expected_exit, const char* cause) {
-  // 300 Hooke segments ringing between bonded walls for 10^6 crossing times: minutes of work.
+pid_t CliSignalTest::start_long_run(int segments) {
+  // Hooke segments, 3 long in all, ringing between bonded walls for 10^6 crossing times:
+  // minutes of work.
   std::string scene =
       "name: ringing\n"
       "materials: {soft: {model: hooke, wave_speed: 0.5}}\n"
       "bodies:\n  - name: bar\n    material: soft\n    segments:\n";
-  for (int k = 0; k < 300; ++k)
-    scene += "      - {length: 0.01, velocity: " + std::string(k % 2 == 0 ? "0.2" : "-0.2") + "}\n";
+  const std::string length = std::to_string(3.0 / segments);
+  for (int k = 0; k < segments; ++k)
+    scene += "      - {length: " + length + ", velocity: " + std::string(k % 2 == 0 ? "0.2" : "-0.2") + "}\n";
   scene +=
       "boundaries: {left: {type: wall, bonded: true}, right: {type: wall, bonded: true}}\n"
       "time: {end: 1.0e6}\n"
       "outputs:\n  probes: [{name: mid, body: bar, at: 1.5, quantities: [p], every: 1.0}]\n";
   write_file("ringing.yaml", scene);
-  const fs::path out = dir() / "run";
-  const pid_t pid = start_rigidity(dir(), {"run", (dir() / "ringing.yaml").string(), "--out", out.string()});
-  ASSERT_GT(pid, 0);
-
-  // Once the run is under way (its temporary directory exists), send the signal.
-  const auto started = [&] {
-    for (const auto& entry : fs::directory_iterator(dir()))
-      if (entry.path().filename().string().rfind("run.tmp-", 0) == 0) return true;
-    return false;
-  };
-  // A second more lets it advance past t = 0 even under a sanitizer on a loaded machine.
-  for (int i = 0; i < 200 && !started(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(25));
+  const pid_t pid =
+      start_rigidity(dir(), {"run", (dir() / "ringing.yaml").string(), "--out", (dir() / "run").string()});
+  if (pid <= 0) return pid;
+  // Once the run is under way (its temporary directory exists), and a second more to let it
+  // advance past t = 0 even under a sanitizer on a loaded machine.
+  for (int i = 0; i < 200 && !temporary_directory_exists(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
   std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+  return pid;
+}
+
+bool CliSignalTest::temporary_directory_exists() {
+  for (const auto& entry : fs::directory_iterator(dir()))
+    if (entry.path().filename().string().rfind("run.tmp-", 0) == 0) return true;
+  return false;
+}
+
+void CliSignalTest::expect_signal_stops_run_cleanly(int signal, int expected_exit, const char* cause, int segments,
+                                                    std::optional<std::chrono::milliseconds> again) {
+  const pid_t pid = start_long_run(segments);
+  ASSERT_GT(pid, 0);
   ASSERT_EQ(::kill(pid, signal), 0);
+  if (again) {
+    std::this_thread::sleep_for(*again);
+    ::kill(pid, signal);  // may find the run already ended
+  }
   int status = 0;
   ASSERT_EQ(::waitpid(pid, &status, 0), pid);
   ASSERT_TRUE(WIFEXITED(status)) << "ended by the signal, not cleanly";
   EXPECT_EQ(WEXITSTATUS(status), expected_exit);
 
+  const fs::path out = dir() / "run";
   const std::string err = read_text(dir() / "stderr");
+  EXPECT_TRUE(contains(err, "stopping: writing the outputs up to now (Ctrl-C again to quit without them)")) << err;
   EXPECT_TRUE(contains(err, std::string("interrupted (") + cause + ") at t = ")) << err;
   const mini_json::Value summary = mini_json::parse(read_text(out / "summary.json"));
   EXPECT_EQ(summary["status"].string, "interrupted");
@@ -289,7 +313,7 @@ void CliSignalTest::expect_signal_stops_run_cleanly(int signal, int expected_exi
   EXPECT_LT(summary["t_reached"].number, 1.0e6);
   const std::string probes = read_text(out / "probes.csv");
   EXPECT_GT(probes.size(), std::string("t,probe,quantity,value\n").size());
-  EXPECT_FALSE(started());  // renamed into place
+  EXPECT_FALSE(temporary_directory_exists());  // renamed into place
 }
 
 TEST_F(CliSignalTest, CtrlCStopsARunCleanlyWithTheOutputsSoFarAndExits130) {
@@ -300,6 +324,19 @@ TEST_F(CliSignalTest, SigtermStopsARunCleanlyWithTheOutputsSoFarAndExits143) {
   // What `timeout`, `kill` and a batch system's time limit send: a killed run used to leave
   // its temporary directory behind (gigabytes of fronts.csv for a long run).
   expect_signal_stops_run_cleanly(SIGTERM, 143, "SIGTERM");
+}
+
+// A bar of 20 000 segments takes about a quarter of a second from the signal to its end, so
+// that a signal 20 ms after the first arrives while the outputs are being written.
+TEST_F(CliSignalTest, ASigtermRepeatedAfter20MsIsTheSameRequest) {
+  // GNU timeout sends SIGTERM to the program and then to its process group, 10-40 ms apart:
+  // the second must not abandon the outputs the first is writing.
+  expect_signal_stops_run_cleanly(SIGTERM, 143, "SIGTERM", 20000, std::chrono::milliseconds(20));
+}
+
+TEST_F(CliSignalTest, ACtrlCRepeatedAfter20MsIsTheSameRequest) {
+  // A terminal's Ctrl-C reaches every process of its group; a launcher may pass it on.
+  expect_signal_stops_run_cleanly(SIGINT, 130, "Ctrl-C", 20000, std::chrono::milliseconds(20));
 }
 
 TEST_F(CliTest, RunRefusesADirectoryThatIsNotARunAsInvalidInputBeforeSolving) {
