@@ -1,6 +1,7 @@
 // rigidity's Python binding (the module rigidity._rigidity; the package rigidity/__init__.py
-// shapes it as SPEC §7 describes): scenes run in process with the GIL released, their outputs
-// handed over as NumPy arrays; materials built through the registry, their laws vectorised in
+// shapes it as SPEC §7 describes): scenes run in process with the GIL released (taken back
+// every 0.1 s to run Python's signal handlers: Ctrl-C stops a run), their outputs handed over
+// as NumPy arrays; materials built through the registry, their laws vectorised in
 // C++; the exact Riemann problem; errors as Python exceptions carrying the file/line/key text.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -23,6 +24,7 @@
 #include "rigidity/plugins.hpp"
 #include "rigidity/quantity.hpp"
 #include "rigidity/registry.hpp"
+#include "rigidity/run_recorder.hpp"
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/riemann.hpp"
 #include "rigidity/solvers/solve.hpp"
@@ -45,11 +47,32 @@ struct Run {
   rigidity::RunResult result;
 };
 
+/// How often a run looks at the Python signal handlers' flags [s of wall-clock time].
+constexpr double kSignalCheckInterval_s = 0.1;
+
 Run run_scene(rigidity::Scene scene) {
   Run run{std::move(scene), {}};
+  // The exception a Python signal handler raised during the run (KeyboardInterrupt for Ctrl-C),
+  // held with the GIL and raised once the run has stopped, with the run up to then attached.
+  std::optional<py::error_already_set> raised;
   {
+    rigidity::MemoryRecorder recorder;
+    recorder.on_progress(
+        [&raised, &recorder](const rigidity::RunProgress&) {
+          if (raised) return;
+          py::gil_scoped_acquire acquire;
+          if (PyErr_CheckSignals() == 0) return;  // runs the handlers of signals caught since the last check
+          raised.emplace();                       // takes the exception from the interpreter
+          recorder.stop("interrupted by " + std::string(py::str(raised->type().attr("__name__"))));
+        },
+        0.0, kSignalCheckInterval_s);
     py::gil_scoped_release release;  // other Python threads go on while this scene is solved
-    run.result = rigidity::solve(run.scene);
+    run.result = rigidity::solve(run.scene, recorder);
+  }
+  if (raised) {
+    run.result.status = rigidity::to_string(rigidity::RunStatus::interrupted);
+    raised->value().attr("run") = py::cast(std::move(run));
+    throw std::move(*raised);
   }
   return run;
 }

@@ -8,13 +8,17 @@
     m.p(numpy.linspace(0.5, 1.5, 11))                    # vectorised in C++
 
 Scenes run in the same process as the interpreter, with the GIL released while they are
-solved. Errors arrive as rigidity.InputError (a bad scene: the message names file, line and
+solved; Ctrl-C stops a run within a tenth of a second or so and raises KeyboardInterrupt, whose
+`result` attribute holds the run up to then (status "interrupted"). A run that a budget stops
+(solver.max_fronts, solver.max_interactions: status "stopped") warns with RunStoppedWarning.
+Errors arrive as rigidity.InputError (a bad scene: the message names file, line and
 key), rigidity.InadmissibleError (a valid scene the physics refuses, e.g. a crushed body) and
 rigidity.NumericalError.
 """
 
 import json as _json
 import os as _os
+import warnings as _warnings
 
 from . import _rigidity
 
@@ -35,7 +39,13 @@ __all__ = [
     "InputError",
     "InadmissibleError",
     "NumericalError",
+    "RunStoppedWarning",
 ]
+
+
+class RunStoppedWarning(RuntimeWarning):
+    """A run stopped by a budget (solver.max_fronts, solver.max_interactions) before time.end:
+    its result holds everything up to summary["t_reached"], and the message says what to change."""
 
 
 class Result:
@@ -73,21 +83,42 @@ def _overrides(set_):
     return out
 
 
+def _solved(solve, *args):
+    """The Result of solve(*args); a stopped run warns, and an exception a signal handler
+    raised during the run (KeyboardInterrupt) carries the run up to then as `result`."""
+    try:
+        solved = solve(*args)
+    except BaseException as error:
+        partial = getattr(error, "run", None)
+        if isinstance(partial, _rigidity.Run):
+            del error.run
+            error.result = Result(partial)
+        raise
+    result = Result(solved)
+    if result.status == "stopped":
+        _warnings.warn("the run of %s stopped at t = %s of time.end = %s: %s" % (
+            result.summary.get("scene"), result.summary.get("t_reached"), result.summary.get("t_end"),
+            result.summary.get("stop_reason")), RunStoppedWarning, stacklevel=3)
+    return result
+
+
 def run(scene, set=None):  # noqa: A002 - the name of rigidity run's --set
     """Runs a scene: a dict (as its YAML would read), YAML text, or the path of a scene file.
 
-    `set` overrides keys as `rigidity run --set` does: {"bodies.0.velocity": 0.8}.
+    `set` overrides keys as `rigidity run --set` does: {"bodies.0.velocity": 0.8}. Ctrl-C
+    raises KeyboardInterrupt with the run up to then as its `result`; a run stopped by a
+    budget warns (RunStoppedWarning).
     """
     overrides = _overrides(set)
     if isinstance(scene, dict):
         # JSON is YAML: the dict reaches the same strict loader as a file does.
-        return Result(_rigidity.run_text(_json.dumps(scene), "<dict>", overrides))
+        return _solved(_rigidity.run_text, _json.dumps(scene), "<dict>", overrides)
     if isinstance(scene, _os.PathLike):
-        return Result(_rigidity.run_file(_os.fspath(scene), overrides))
+        return _solved(_rigidity.run_file, _os.fspath(scene), overrides)
     if isinstance(scene, str):
         if "\n" not in scene and (scene.endswith((".yaml", ".yml")) or _os.path.isfile(scene)):
-            return Result(_rigidity.run_file(scene, overrides))
-        return Result(_rigidity.run_text(scene, "<text>", overrides))
+            return _solved(_rigidity.run_file, scene, overrides)
+        return _solved(_rigidity.run_text, scene, "<text>", overrides)
     raise TypeError("rigidity.run takes a dict, YAML text or a path, not %s" % type(scene).__name__)
 
 

@@ -270,3 +270,76 @@ def test_an_si_scene_gives_the_numbers_of_the_csv_files(tmp_path):
     events = np.genfromtxt(tmp_path / "out" / "events.csv", delimiter=",", names=True, dtype=None, encoding="utf-8")
     np.testing.assert_array_equal(r.events["t"], np.atleast_1d(events["t"]))
     np.testing.assert_array_equal(r.events["x"], np.atleast_1d(events["x"]))
+
+
+def ringing_scene(t_end, **solver):
+    """A bar of 300 Hooke segments ringing between bonded walls: about 10^4 time units a second."""
+    segments = [{"length": 0.01, "velocity": 0.2 if k % 2 == 0 else -0.2} for k in range(300)]
+    scene = {
+        "name": "ringing",
+        "materials": {"soft": {"model": "hooke", "wave_speed": 0.5}},
+        "bodies": [{"name": "bar", "material": "soft", "segments": segments}],
+        "boundaries": {"left": {"type": "wall", "bonded": True}, "right": {"type": "wall", "bonded": True}},
+        "time": {"end": t_end},
+        "outputs": {"probes": [{"name": "mid", "body": "bar", "at": 1.5, "quantities": ["p"], "every": 1.0}]},
+    }
+    if solver:
+        scene["solver"] = solver
+    return scene
+
+
+def test_ctrl_c_stops_a_run_with_keyboard_interrupt_and_the_run_so_far(tmp_path):
+    import json
+    import signal
+    import subprocess
+    import sys
+
+    # A run of minutes in a child interpreter, sent SIGINT (what Ctrl-C sends) once under way.
+    script = tmp_path / "long_run.py"
+    script.write_text(
+        "import json, sys, rigidity\n"
+        "scene = json.loads(sys.argv[1])\n"
+        "print('running', flush=True)\n"
+        "try:\n"
+        "    rigidity.run(scene)\n"
+        "except KeyboardInterrupt as e:\n"
+        "    r = e.result\n"
+        "    print(json.dumps({'status': r.status, 't_reached': r.summary['t_reached'],\n"
+        "                      'summary_status': r.summary['status'], 'samples': len(r.probes['mid']['p'][0])}))\n"
+        "    sys.exit(3)\n"
+        "print('finished')\n")
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in [os.path.dirname(os.path.dirname(rigidity.__file__)),
+                                                                   os.environ.get("PYTHONPATH")] if p))
+    child = subprocess.Popen([sys.executable, str(script), json.dumps(ringing_scene(1.0e6))], stdout=subprocess.PIPE,
+                             text=True, env=env)
+    try:
+        assert child.stdout.readline().strip() == "running"
+        time.sleep(1.0)
+        child.send_signal(signal.SIGINT)
+        sent = time.perf_counter()
+        out, _ = child.communicate(timeout=20)
+        took = time.perf_counter() - sent
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.wait()
+    assert child.returncode == 3, out
+    assert took < 1.0  # measured 0.06 s: the run looks at Python's signal handlers every 0.1 s
+    partial = json.loads(out)
+    assert partial["status"] == "interrupted"
+    assert partial["summary_status"] == "interrupted"
+    assert 0.0 < partial["t_reached"] < 1.0e6
+    assert partial["samples"] >= int(partial["t_reached"])  # a probe sample every time unit up to then
+
+
+def test_a_run_stopped_by_a_budget_warns():
+    with pytest.warns(rigidity.RunStoppedWarning, match="solver.max_interactions") as caught:
+        r = rigidity.run(ringing_scene(100.0, max_interactions=2000))
+    assert r.status == "stopped"
+    assert r.summary["t_reached"] < 100.0
+    assert caught[0].filename == __file__  # the warning points at the call
+    # A run that reaches time.end says nothing.
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert rigidity.run(ringing_scene(1.0)).status == "ok"
