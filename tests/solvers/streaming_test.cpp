@@ -223,7 +223,7 @@ TEST_F(Streaming, EventsCsvJoinsTheBodiesOfAnEvent) {
 // ---- a budget stops the run cleanly ---------------------------------------------------------
 
 TEST_F(Streaming, ABudgetStopsTheRunWithTheOutputsUpToTheTimeReached) {
-  for (const char* budget : {"solver.max_interactions=20000", "solver.max_fronts=2000"}) {
+  for (const char* budget : {"solver.max_interactions=200", "solver.max_fronts=200"}) {
     SCOPED_TRACE(budget);
     const Scene scene = load_scene_string(kCascade, "<test>", {budget});
     const RunResult result = run_streaming(scene, "run");
@@ -252,9 +252,11 @@ TEST_F(Streaming, ABudgetStopsTheRunWithTheOutputsUpToTheTimeReached) {
     EXPECT_EQ(last_time(dir / "snapshots.csv"), 2.0);                           // not the one at 2.09
     EXPECT_LE(last_time(dir / "fronts.csv", 2), result.t_reached);              // t1
 
-    // The books are closed at t_reached: momentum still balances.
+    // The books are closed at t_reached: momentum still balances, to what fan steps of ΔΨ
+    // (at most fan_step_max) miss the jump conditions by, O(ΔΨ²).
     const Conservation& c = result.conservation;
-    EXPECT_NEAR(c.momentum_final - c.momentum_initial, c.wall_impulse, 1e-9);
+    const double step = result.solver_number("fan_step_max");
+    EXPECT_NEAR(c.momentum_final - c.momentum_initial, c.wall_impulse, 4.0 * step * step);
     EXPECT_GE(c.energy_dissipated, 0.0);
     EXPECT_NEAR(c.energy_final + c.energy_dissipated, c.energy_initial, 1e-6);
     ASSERT_EQ(result.bodies.size(), 1u);

@@ -326,20 +326,25 @@ void Tracker::merge_nearby(int id, double t) {
   }
 }
 
-double Tracker::fan_error(int id, double t) const {
+double Tracker::fan_error(int id, double t, bool smooth_on) const {
   const Node& n = nodes_[id];
   const Region& left = nodes_[n.prev].right;
   const Region& right = n.right;
   const Material& m = *right.material;
   const double strength = std::abs(wave_strength(m, left.state, right.state, n.family));
+  // A fan step's ramp spreads as its fan does; a step of a compression wave stands for the
+  // ramp between its neighbours.
   const double spread =
-      std::abs(speeds_of(left, n.family).lagrangian - speeds_of(right, n.family).lagrangian) * (t - n.born);
+      n.front_kind == FrontKind::rarefaction
+          ? std::abs(speeds_of(left, n.family).lagrangian - speeds_of(right, n.family).lagrangian) * (t - n.born)
+          : kInf;
   // A jump of σ in the middle of a ramp of width w misses it by two triangles, σ w/4 in
   // |δφ| + |δΨ| (σ/2 each, the other invariant being constant across a simple wave). The
   // ramp is no wider than the room between its neighbours: a staircase of steps stands for
   // a fan one spacing per step.
   const double room = 0.5 * (nodes_[n.next].X_at(t) - nodes_[n.prev].X_at(t));
-  return 0.25 * strength * std::min(spread, room);
+  const double staircase = 0.25 * strength * std::min(spread, room);
+  return smooth_on ? std::min(staircase, reconstruction_error(id, t)) : staircase;
 }
 
 }  // namespace rigidity::characteristics

@@ -165,7 +165,8 @@ bool Tracker::interact_in_place(int a, int b, double t) {
       } else {
         kinds[k] = FrontKind::rarefaction;
         const double span = std::abs(psi_of_star - (k == 0 ? psi_left : psi_right));
-        if (span >= 2.0 * fan_step_) return false;  // a fan to split in steps
+        // A new fan is split in steps; a step of a smooth wave goes on as one step.
+        if (span >= 2.0 * fan_step_ && !na.smooth && !nb.smooth) return false;
       }
     }
   }
@@ -178,17 +179,24 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   // The errors the outgoing waves carry ([0] C−, [1] C+): each incoming front's goes on with
   // the wave of its family (two of one family merge into one), with what its fan step booked.
   double carried[2] = {0.0, 0.0};
+  SmoothIn smooth_in;
+  smooth_in.add(na.family > 0 ? 1 : 0, na.smooth, false);
+  smooth_in.add(nb.family > 0 ? 1 : 0, nb.smooth, na.family == nb.family);
   for (Node* n : {&na, &nb}) {
     const int k = n->family > 0 ? 1 : 0;
     carried[k] += n->carried;
     n->carried = 0.0;
-    if (n->front_kind != FrontKind::rarefaction) continue;
-    const bool continues =
-        kinds[k] == FrontKind::rarefaction && !(held_back && k == 0) && (na.family != nb.family || degenerate);
-    if (continues && born[k] == t) {
-      born[k] = n->born;
-    } else {
-      carried[k] += book_fan_error(static_cast<int>(n - nodes_.data()), t);
+    const int id = static_cast<int>(n - nodes_.data());
+    if (n->front_kind == FrontKind::rarefaction) {
+      const bool continues =
+          kinds[k] == FrontKind::rarefaction && !(held_back && k == 0) && (na.family != nb.family || degenerate);
+      if (continues && born[k] == t) {
+        born[k] = n->born;
+      } else {
+        carried[k] += book_fan_error(id, t);
+      }
+    } else if (n->smooth && !smooth_in.out(k)) {
+      carried[k] += book_fan_error(id, t);  // a step of a compression wave a jump takes in
     }
   }
 
@@ -209,7 +217,8 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     kill_node(a, t);
     error_lost_ += carried[0];  // the C− wave held back (its strength is booked above)
     nodes_[b].carried = carried[1];
-    nodes_[b].smooth = false;  // two fronts of one family met
+    nodes_[b].smooth = smooth_in.out(1);
+    nodes_[b].kink = 0.0;
     set_front(b, +1, kinds[1], *m, left, right, t, X, x, off_curve[1], born[1], strength_plus);
     schedule_meet(keep_before);
     schedule_meet(b);
@@ -243,12 +252,14 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     at[1] = &star_region.hyperbolic;
     at[2] = &hyperbolic_of(nb.right);
   }
-  // Each wave goes on as smooth as it came in; two of one family meeting make a jump.
-  const bool smooth_on = na.family != nb.family;
-  const bool smooth_minus = smooth_on && (na.family < 0 ? na.smooth : nb.smooth);
-  const bool smooth_plus = smooth_on && (na.family > 0 ? na.smooth : nb.smooth);
-  na.smooth = smooth_minus;
-  nb.smooth = smooth_plus;
+  // A jump that meets a step of a smooth wave changes its speed: by how much (Node::kink).
+  const Node* jump_in = na.smooth != nb.smooth ? (na.smooth ? &nb : &na) : nullptr;
+  const double jump_speed = jump_in != nullptr ? jump_in->dXdt : 0.0;
+  const double jump_since = jump_in != nullptr ? jump_in->t0 : 0.0;
+  const int jump_family = jump_in != nullptr ? jump_in->family : 0;
+  na.kink = nb.kink = 0.0;
+  na.smooth = smooth_in.out(0);
+  nb.smooth = smooth_in.out(1);
   set_front(a, -1, kinds[0], *m, left, star, t, X, x, off_curve[0], born[0], strength_minus,
             degenerate ? &star_region.speeds[0] : nullptr, laws_minus, at[0], at[1]);
   set_front(b, +1, kinds[1], *m, star, right, t, X, x, off_curve[1], born[1], strength_plus,
@@ -256,6 +267,11 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   na.right = star_region;
   na.carried = carried[0];
   nb.carried = carried[1];
+  if (jump_in != nullptr) {
+    Node& jump = jump_family < 0 ? na : nb;
+    jump.kink = std::abs(jump.dXdt - jump_speed);
+    jump.kink_dt = t - jump_since;
+  }
   schedule_meet(na.prev);
   schedule_meets(a, b);
   if (degenerate) {
@@ -364,7 +380,7 @@ void Tracker::resolve(int seed_left, int seed_right, double t) {
   resolve_group(group_, t);
 }
 
-void Tracker::wave(const Material& m, const State& outer, const State& star, int family, WaveStates& w) {
+void Tracker::wave(const Material& m, const State& outer, const State& star, int family, bool fresh, WaveStates& w) {
   w.states.clear();
   w.shock = false;
   w.states.push_back(outer);
@@ -379,13 +395,18 @@ void Tracker::wave(const Material& m, const State& outer, const State& star, int
     return;
   }
   // A rarefaction fan: states along the invariant of the other family, in steps of Ψ.
-  balance_fans();
   const double psi_outer = m.riemann_psi(outer.stretch), psi_star = m.riemann_psi(star.stretch);
   const double span = std::abs(psi_star - psi_outer);
-  // Steps between one and two fan steps wide: a step that has grown through interactions is
-  // split only once it has doubled, so that crossings do not multiply the fronts of a fan.
+  // A new fan in steps between one and two fan steps wide. A step of a smooth wave that has
+  // grown through interactions goes on as one step: the steps it would split into would all
+  // leave from where it is, not from where their characteristics are, half its width apart.
   // The step count in double first: span / tolerance overflows an int for tolerances of 1e-11.
-  const double wanted = std::floor(span / fan_step_);
+  const double least = std::min<double>(kMinFanSteps, std::floor(span / (2.0 * resolution_)));
+  const double speed_outer = characteristic_speeds(m, outer, family).lagrangian;
+  const double speed_star = characteristic_speeds(m, star, family).lagrangian;
+  const double by_speed = std::ceil(std::abs(speed_star - speed_outer) /
+                                    (kMaxSpeedStep * std::max(std::abs(speed_outer), std::abs(speed_star))));
+  const double wanted = fresh ? std::max({std::floor(span / fan_step_), least, by_speed}) : 1.0;
   if (wanted > kMaxFanSteps) fan_capped_ = true;
   const int steps = std::max(1, static_cast<int>(std::min(wanted, static_cast<double>(kMaxFanSteps))));
   // J carried across: J+ = φ + Ψ for a C− fan, J− = φ − Ψ for a C+ fan.
@@ -555,26 +576,28 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   // A rarefaction step that leaves as the only step of its family keeps its age (its
   // fan error goes on growing); otherwise the error it carries is booked now.
   int steps_in[2] = {0, 0};
-  double steps_born[2] = {0.0, 0.0}, steps_error[2] = {0.0, 0.0};
+  double steps_born[2] = {0.0, 0.0}, steps_error[2] = {0.0, 0.0}, steps_staircase[2] = {0.0, 0.0};
+  // Steps of compression waves a jump of their family takes in, and that jump's speed and
+  // anchor time as it came in (see Node::kink).
+  double steps_taken[2] = {0.0, 0.0}, jump_speed[2] = {kInf, kInf}, jump_since[2] = {0.0, 0.0};
   // The errors the incoming fronts carry, and the rate at which they sweep L1 (strength ×
   // speed in the labels): shared among the outgoing waves below.
   double carried_in = 0.0, sweep_in = 0.0, fastest_in = 0.0, released = 0.0;
   int fronts_in = 0;
-  // The waves leave smooth if every front that came in was a smooth step and no two of one
-  // family in one piece met (steps of a compression wave that meet make a shock), or if a
-  // piston ramp's step is what starts them (handle sets emit_smooth_ for it).
-  bool smooth_in = true;
+  // Which outgoing waves go on as smooth waves (see smooth_out below).
+  SmoothIn smooth_in;
   int families_in[2] = {kNone, kNone};  // the piece each family came in from
   for (int id : group) {
     Node& n = nodes_[id];
     const double defect = close_defect(n, t);
     if (n.kind != NodeKind::front) {
       released += defect;  // a wave held back here leaves now, late by as much
+      smooth_in.structure = true;
       continue;
     }
-    int& came_from = families_in[n.family > 0 ? 1 : 0];
-    smooth_in = smooth_in && n.smooth && came_from != n.piece;
-    came_from = n.piece;
+    const int f = n.family > 0 ? 1 : 0;
+    smooth_in.add(f, n.smooth, families_in[f] == n.piece);
+    families_in[f] = n.piece;
     carried_in += n.carried;
     n.carried = 0.0;
     // A front back from a light piece has its lab line but no label speed: that of its
@@ -585,10 +608,17 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     ++fronts_in;
     account_front_end(id, t);
     if (n.front_kind == FrontKind::rarefaction) {
-      const int f = n.family > 0 ? 1 : 0;
       ++steps_in[f];
       steps_born[f] = n.born;
       steps_error[f] += fan_error(id, t);
+    }
+    if (n.front_kind == FrontKind::rarefaction || n.smooth) {
+      steps_staircase[f] += fan_error(id, t, false);
+      if (n.front_kind != FrontKind::rarefaction) steps_taken[f] += fan_error(id, t);
+    }
+    if (!n.smooth) {
+      jump_speed[f] = n.dXdt;
+      jump_since[f] = n.t0;
     }
   }
   for (int id : group)
@@ -659,8 +689,19 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     }
   }
 
-  // Emit the waves.
-  emit_smooth_ = !sol.parted && (fronts_in > 0 ? smooth_in : emit_smooth_);
+  // Emit the waves. Each is smooth as smooth_in says, or, with no front coming in, if a piston
+  // ramp's step starts it (handle sets emit_smooth_ for it); a crack inside a piece makes
+  // jumps (a body leaving a wall or another body reflects a smooth wave as a free end does).
+  const bool crack = sol.parted && !left_boundary && !right_boundary && contact_left == kNone;
+  bool smooth_out[2];
+  for (int f = 0; f < 2; ++f) {
+    smooth_out[f] = !crack && (fronts_in > 0 ? smooth_in.out(f) : emit_smooth_);
+    if (crack) {
+      steps_error[f] = steps_staircase[f];  // a crack took the steps in
+    } else if (!smooth_out[f]) {
+      steps_error[f] += steps_taken[f];
+    }
+  }
   emitted_left_.clear();
   emitted_right_.clear();
   WaveStates& wl = wave_left_;
@@ -668,20 +709,32 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   wl.states.clear();
   wr.states.clear();
   if (!left_boundary && droplet >= 0) {
-    wave(*mL, left_region.state, sol.left, -1, wl);
+    wave(*mL, left_region.state, sol.left, -1, !smooth_in.any_smooth, wl);
+    emit_smooth_ = smooth_out[0];
     emit_fronts(*mL, wl, -1, left_piece, t, XL, x, emitted_left_);
   }
   if (!right_boundary && droplet <= 0) {
-    wave(*mR, right_region.state, sol.right, +1, wr);
+    wave(*mR, right_region.state, sol.right, +1, !smooth_in.any_smooth, wr);
+    emit_smooth_ = smooth_out[1];
     emit_fronts(*mR, wr, +1, right_piece, t, XR, x, emitted_right_);
     // Emitted from the outer state inwards; in space the C+ fan's head (next to the
     // right state) is its rightmost front.
     std::reverse(emitted_right_.begin(), emitted_right_.end());
   }
   emit_smooth_ = false;
+  if (smooth_in.any_smooth) {
+    // What a smooth wave's step becomes is a step of that wave, not a centred fan of its own.
+    for (int id : emitted_left_) leave_fan(nodes_[id]);
+    for (int id : emitted_right_) leave_fan(nodes_[id]);
+  }
 
   for (int f = 0; f < 2; ++f) {
     const std::vector<int>& out = f == 0 ? emitted_left_ : emitted_right_;
+    if (smooth_in.any_smooth && jump_speed[f] < kInf && out.size() == 1) {
+      Node& jump = nodes_[out.front()];  // a jump that met a smooth wave's step (Node::kink)
+      jump.kink = std::abs(jump.dXdt - jump_speed[f]);
+      jump.kink_dt = t - jump_since[f];
+    }
     if (steps_in[f] == 1 && out.size() == 1 && nodes_[out.front()].front_kind == FrontKind::rarefaction) {
       // A step of an older fan goes on: no new centred fan here.
       nodes_[out.front()].born = steps_born[f];

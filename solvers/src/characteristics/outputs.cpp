@@ -85,83 +85,21 @@ void Tracker::region_at(int n, double X, double t, Region& region, double& x) co
   }
 }
 
-int Tracker::smooth_neighbour(int from, int family, int Node::*step) const {
-  for (int id = from; id != kNone; id = nodes_[id].*step) {
-    const Node& n = nodes_[id];
-    if (n.kind != NodeKind::front || !n.smooth) return kNone;
-    if (n.family == family) return id;
-  }
-  return kNone;
-}
-
-bool Tracker::reconstruct(int n, double X, double t, State& state, double& dx) const {
-  const Node& node = nodes_[n];
-  if (node.kind != NodeKind::front) return false;  // a strip of a smooth wave starts at one of its steps
-  const Region& region = node.right;
-  const Material& m = *region.material;
-  const double psi = memo_->psi(m, region.state.stretch);
-  double j[2] = {region.state.rapidity - psi, region.state.rapidity + psi};  // [0] J−, [1] J+
-  bool changed = false;
-  dx = 0.0;
-  // The jump of a front's own invariant, right side less left side.
-  const auto jump = [&](int id) {
-    const Node& f = nodes_[id];
-    const State& a = nodes_[f.prev].right.state;
-    const State& b = f.right.state;
-    return (b.rapidity - a.rapidity) + f.family * (memo_->psi(m, b.stretch) - memo_->psi(m, a.stretch));
-  };
-  for (int family : {-1, +1}) {
-    const int a = smooth_neighbour(n, family, &Node::prev);
-    if (a == kNone) continue;
-    const int b = smooth_neighbour(node.next, family, &Node::next);
-    if (b == kNone) continue;
-    const double Xa = nodes_[a].X_at(t), Xb = nodes_[b].X_at(t), width = Xb - Xa;
-    if (!(width > 0.0)) continue;
-    // A plateau between two waves is far wider than the strips of either.
-    const int a2 = smooth_neighbour(nodes_[a].prev, family, &Node::prev);
-    const int b2 = smooth_neighbour(nodes_[b].next, family, &Node::next);
-    const double left = a2 != kNone ? Xa - nodes_[a2].X_at(t) : kInf;
-    const double right = b2 != kNone ? nodes_[b2].X_at(t) - Xb : kInf;
-    const double narrower = std::min(left, right);
-    if (narrower == kInf || width > kPlateauRatio * narrower) continue;  // (two lone steps: a plateau too)
-    if (nodes_[a].prev == kNone || nodes_[nodes_[a].prev].right.material != &m || nodes_[b].right.material != &m)
-      continue;
-    const double slope = 0.5 * (jump(a) + jump(b)) / width;
-    const double Xm = 0.5 * (Xa + Xb);
-    j[family > 0 ? 1 : 0] += slope * (X - Xm);
-    // The lab position moves by the integral from X_A of the density's change, region by
-    // region (ρ = s/γ changes with J± at ∂ρ/∂J± = −ρ (tanh φ ± 1/c_s)/2), less the share of
-    // X − X_A of what that integral leaves at X_B: the staircase's lab positions of the two
-    // steps stay.
-    double to_X = 0.0, to_B = 0.0;
-    bool past = false;  // the walk is right of the region that holds X
-    for (int k = a; k != b; k = nodes_[k].next) {
-      const State& st = nodes_[k].right.state;
-      const double rate = -0.5 * label_density(st) * (std::tanh(st.rapidity) + family / m.sound_speed(st.stretch));
-      const double lo = nodes_[k].X_at(t) - Xm, hi = nodes_[nodes_[k].next].X_at(t) - Xm;
-      const double part = 0.5 * rate * (hi * hi - lo * lo);
-      to_B += part;
-      if (past) continue;
-      to_X += k == n ? 0.5 * rate * ((X - Xm) * (X - Xm) - lo * lo) : part;
-      past = k == n;
-    }
-    dx += slope * (to_X - to_B * (X - Xa) / width);
-    changed = true;
-  }
-  if (!changed) return false;
-  const Solved<Stretch> s = memo_->stretch_at_psi(m, 0.5 * (j[1] - j[0]));
-  if (!s.ok() || !representable(s.value)) return false;
-  state = State{0.5 * (j[1] + j[0]), s.value};
-  return true;
-}
-
 bool Tracker::fan_sample(int n, double X, double t, State& state, double& x) const {
   for (const int id : {n, nodes_[n].next}) {
     if (id == kNone || nodes_[id].kind != NodeKind::front || nodes_[id].fan == kNone) continue;
     const CentredFan& f = fans_[nodes_[id].fan];
     if (!(t > f.t0)) return false;
     const double speed = (X - f.X0) / (t - f.t0);
-    if (!(speed > std::min(f.speed_a, f.speed_b) && speed < std::max(f.speed_a, f.speed_b))) continue;
+    const double slowest = std::min(f.speed_a, f.speed_b), fastest = std::max(f.speed_a, f.speed_b);
+    if (!(speed > slowest && speed < fastest)) continue;
+    // The region's other edge is a step of the same fan, or lies beyond the fan: a wave that
+    // has entered the fan's wedge without meeting a step yet has changed the state behind it.
+    const int other = id == n ? nodes_[n].next : n;
+    if (other == kNone || nodes_[other].fan != nodes_[id].fan) {
+      const double edge = other == kNone ? (id == n ? kInf : -kInf) : (nodes_[other].X_at(t) - f.X0) / (t - f.t0);
+      if (id == n ? edge < fastest : edge > slowest) return false;
+    }
     const Solved<State> exact = centred_fan_state(*f.material, f.family, f.j_other, f.psi_a, f.psi_b, speed);
     if (!exact.ok()) return false;  // the steps' state, then
     state = exact.value;

@@ -209,8 +209,17 @@ RunResult Tracker::run() {
     if (n.kind != NodeKind::front) continue;
     carried_alive += n.carried;
     // A step still on its line stands for its centred fan, which the samples take exactly.
-    if (n.front_kind == FrontKind::rarefaction && n.fan == kNone)
+    if (n.front_kind == FrontKind::rarefaction && n.fan == kNone) {
       error_fans_alive += fan_error(static_cast<int>(id), t_end);
+    }
+    // A jump that met a smooth wave is off its path by up to about kink × kink_dt / 2.
+    if (n.kink > 0.0) error_fans_alive += 0.5 * n.strength * n.kink * std::min(t_end - n.t0, n.kink_dt);
+    if (n.front_kind != FrontKind::rarefaction && n.smooth && n.fan == kNone) {
+      // Steps of a piston's ramp and what smooth waves become in linearly degenerate bodies
+      // and as weak shocks: the reconstruction's error where it applies.
+      const double e = reconstruction_error(static_cast<int>(id), t_end);
+      if (e < kInf) error_fans_alive += e;
+    }
   }
   for (const LightPiece& lp : light_)
     for (const std::deque<LightFront>* queue : {&lp.plus, &lp.minus})

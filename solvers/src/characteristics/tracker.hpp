@@ -9,6 +9,7 @@
 //   outputs.cpp       samples, front segments, energy books
 //   light.cpp         pieces whose sound travels at light speed, crossings not visited
 //   lattice.cpp       pieces of any other linearly degenerate material, the same
+//   reconstruction.cpp  smooth waves sampled between their steps, and the error of doing so
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -38,17 +39,27 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 /// Steps a single rarefaction fan may be split into; beyond it the fan is coarser
 /// than solver.tolerance and the run says so in its warnings.
 constexpr int kMaxFanSteps = 100000;
-/// A rarefaction fan is split into steps of this many tolerances in its invariant: a step
-/// of jump δ standing in the middle of the part of the fan it replaces misses it by δ/4 of
-/// that part's width (see fan_error), so a fan as wide as its body costs δ/4 per unit
-/// length, which the stability factor 2 of the bound makes δ/2: the tolerance.
-constexpr double kFanStepPerTolerance = 2.0;
-/// Fan steps may be coarsened, by kResolutionStep per fan split, up to this many times the
-/// width the tolerance sets, while the fan steps have booked less than kFanBalance × what the
-/// merges have (see Tracker::balance_fans): on random multi-body scenes the least bound for the
-/// work came with the fans booking up to twice what the merges book.
-constexpr double kMaxFanScale = 8.0;
-constexpr double kFanBalance = 2.0;
+/// A rarefaction fan is split into steps of this many √tolerance in Ψ. The samples
+/// reconstruct the fan linearly between its steps (Tracker::reconstruct), which misses it by
+/// its curvature, second order in the step: an L1 error of about δ² per unit length for
+/// steps δ (measured on the crossed fan of bench/second_order.py: error ≈ 1.2 δ² at t = 3),
+/// which the bound books at about twice that: steps of 0.7 √tolerance put the bound of a
+/// scene of fans near the tolerance.
+constexpr double kFanStepPerRootTolerance = 0.7;
+/// The widest fan step, in Ψ, and the most the fan's characteristic speed (in the labels) may
+/// change across one of its steps, relative to itself: the reconstruction's error is second
+/// order in the step while the speeds change little across one (a few percent); coarser steps
+/// meet shocks and each other as the jumps they are, at first order (measured on the random
+/// gas-bar scenes of the bound tests, and on a Murnaghan bar whose sound is ten times slower).
+constexpr double kMaxFanStep = 0.02;
+constexpr double kMaxSpeedStep = 0.04;
+[[nodiscard]] inline double fan_step_for(double resolution) {
+  return std::min(kMaxFanStep, kFanStepPerRootTolerance * std::sqrt(resolution));
+}
+/// A fan is split into at least this many steps where steps of 2 × tolerance would make as
+/// many: a line through fewer steps reconstructs little of it, and a shock that overtakes a
+/// fan of one or two steps is displaced by the whole fan at once.
+constexpr int kMinFanSteps = 4;
 /// A merge of two neighbouring fronts may cost at most this fraction of the tolerance's L1
 /// budget (tolerance × natural length of all bodies): thousands of merges fit in it.
 constexpr double kMergeFraction = 1.0;
@@ -176,6 +187,11 @@ struct Node {
   /// solution: samples reconstruct the wave between it and its neighbours of its family
   /// (Tracker::reconstruct).
   bool smooth = false;
+  /// Jumps: how much the label speed changed when it last met a step of a smooth wave, and
+  /// the time since the interaction before. A jump meeting a smooth wave step by step moves
+  /// on a polygon that the path through the smooth wave cuts at each step's mean value; in
+  /// between it is off by up to about kink × kink_dt / 2, which the bound takes at t_end.
+  double kink = 0.0, kink_dt = 0.0;
 
   [[nodiscard]] double X_at(double t) const { return X0 + dXdt * (t - t0); }
   [[nodiscard]] double x_at(double t) const { return x0 + dxdt * (t - t0); }
@@ -292,6 +308,23 @@ struct EventLater {
   bool operator()(const Event& x, const Event& y) const { return x.t != y.t ? x.t > y.t : x.seq > y.seq; }
 };
 
+/// Which waves leaving an interaction go on as smooth waves, from the fronts that came in. A
+/// wave of family f is smooth if a smooth step came in, no front of family f that came in was
+/// a true jump (a shock or a jump goes on as itself), no two of family f met (steps of a
+/// compression wave that meet make a shock, which is sharp, while what they reflect is
+/// smooth) and, where the meeting is at an end, an interface or a contact, no front that came
+/// in was a true jump (its reflection and transmission are jumps too).
+struct SmoothIn {
+  bool any_smooth = false, any_sharp = false, structure = false;
+  bool sharp[2] = {false, false}, met[2] = {false, false};  ///< [0] C−, [1] C+
+  void add(int f, bool smooth, bool meets_its_family) {
+    (smooth ? any_smooth : any_sharp) = true;
+    sharp[f] = sharp[f] || !smooth;
+    met[f] = met[f] || meets_its_family;
+  }
+  [[nodiscard]] bool out(int f) const { return any_smooth && !sharp[f] && !met[f] && !(structure && any_sharp); }
+};
+
 /// One wave of a Riemann solution, as the states it passes through.
 struct WaveStates {
   std::vector<State> states;  ///< outer state first, star state last
@@ -305,7 +338,7 @@ class Tracker {
     for (const BodyDecl& body : scene.bodies) segments += body.segments.size();
     memo_ = std::make_unique<MaterialMemo>(std::bit_ceil(std::clamp<std::size_t>(64 * segments, 16, 1024)));
     want_fronts_ = scene.outputs.fronts;
-    fan_step_ = kFanStepPerTolerance * scene.solver.tolerance;
+    fan_step_ = fan_step_for(scene.solver.tolerance);
   }
 
   RunResult run();
@@ -414,7 +447,10 @@ class Tracker {
     return r.hyperbolic;
   }
   void resolve_group(std::vector<int>& group, double t);
-  void wave(const Material& m, const State& outer, const State& star, int family, WaveStates& w);
+  /// The states of the wave of `family` from `outer` to `star`: a new rarefaction fan (`fresh`:
+  /// no step of a smooth wave came in) in steps of fan_step_ in Ψ, and in at least
+  /// kMinFanSteps where steps of 2 × the resolution would make as many; a step going on, one.
+  void wave(const Material& m, const State& outer, const State& star, int family, bool fresh, WaveStates& w);
   void emit_fronts(const Material& m, const WaveStates& w, int family, int piece, double t, double X, double x,
                    std::vector<int>& out);
   void reanchor(int id, double t);
@@ -517,22 +553,29 @@ class Tracker {
   /// The state at label X at time t in the region right of node n (the exact fan's where X
   /// lies in an uncrossed one, see fan_sample), and the lab position of X.
   void region_at(int n, double X, double t, Region& region, double& x) const;
-  /// The nearest front of `family` from node `from` on, walking towards `step` (prev or
-  /// next), within the strip a smooth wave of that family may fill: kNone at an end, an
-  /// interface, or a front that is a true jump (a shock or a jump not made of smooth steps).
-  int smooth_neighbour(int from, int family, int Node::*step) const;
-  /// The state at label X of the region right of node n with the smooth waves through it
-  /// reconstructed: where that region is the strip between two steps A < B of one family's
-  /// smooth wave, the family's invariant there varies linearly, J(X) = J_region + (j_A +
-  /// j_B)/2 · (X − X_mid)/(X_B − X_A), with j the steps' jumps: the line through the values
-  /// at the steps' own characteristics (the means of their two sides), which the steps'
-  /// speeds follow to second order. A strip more than kPlateauRatio times as wide as the
-  /// narrower of its neighbouring strips of the wave, or with no such neighbour, is a plateau
-  /// between two waves and stays constant.
-  /// The lab position moves with it by dx, the integral of the density's change from X_A,
-  /// which vanishes at both steps. Returns false where nothing is reconstructed.
-  bool reconstruct(int n, double X, double t, State& state, double& dx) const;
+  // ---- smooth waves between their steps (reconstruction.cpp) ----------------------------
+  /// A front that is a step of a smooth wave of `family`.
+  [[nodiscard]] bool is_step(int id, int family) const {
+    const Node& n = nodes_[id];
+    return n.kind == NodeKind::front && n.smooth && n.family == family;
+  }
+  /// Walking from node `from` towards `step` (&Node::prev or &Node::next) past smooth steps of
+  /// the other family: the first node that is a front of `family`, or anything that bounds
+  /// the strip a smooth wave of `family` may fill (an end, an interface, a true jump).
+  [[nodiscard]] int strip_edge(int from, int family, int Node::*step) const;
+  /// The slope in X of `family`'s invariant over the strip between its smooth steps a < b at
+  /// time t, the line through the values at the steps' own characteristics (the means of
+  /// their two sides, which their speeds follow to second order): (j_a + j_b)/2 over the
+  /// strip's width, with j a step's jump. NaN where the strip is no part of one smooth wave:
+  /// more than kPlateauRatio times as wide as the narrower strip next to it, with no strip of
+  /// the wave next to it, between steps of opposite jumps (an extremum where two waves meet),
+  /// or holding another material.
+  [[nodiscard]] double wedge_slope(int a, int b, int family, double t) const;
   static constexpr double kPlateauRatio = 3.0;
+  /// The state at label X of the region right of node n with the smooth waves through it
+  /// reconstructed, and the lab position's change dx (see reconstruction.cpp). Returns false
+  /// where nothing is reconstructed.
+  bool reconstruct(int n, double X, double t, State& state, double& dx) const;
   // ---- the error budget (see README "What the tolerance means") --------------------
   double weak_ = 0.0;                   ///< strength |ΔJ| below which an interface or contact emits no wave
   double weak_merging_ = 0.0;           ///< strength below which two fronts of one family merging emit no reflection
@@ -561,7 +604,7 @@ class Tracker {
     merge_light_ = std::max(merge_light_, merge_base_);
     weak_merging_ = 0.5 * r * r;
     weak_ = 0.5 * r / places_;
-    fan_step_ = kFanStepPerTolerance * r * fan_scale_;
+    fan_step_ = fan_step_for(r);
     widest_fan_step_ = std::max(widest_fan_step_, fan_step_);
     front_cap_ = std::max(kMinFrontsPerBody, kFrontsPerBody / r);  // per body
   }
@@ -611,26 +654,9 @@ class Tracker {
   static constexpr double kLightCap = 10.0;
   double merge_light_ = 0.0;
   long light_fronts_ = 0;
-  double light_bodies_ = 0.0;  ///< bodies whose one piece is light
-  /// In a rough multi-body run the merges that hold the fronts to their cap book most of the
-  /// bound, while the fan steps, split to the tolerance, are most of the fronts (a fan a body
-  /// wide takes 1/(2 tolerance) of them and each crossing costs in proportion to the fronts'
-  /// square). At each fan split, while the fan steps have booked less than kFanBalance × what
-  /// the merges have, the fan step widens by kResolutionStep (at most kMaxFanScale times the
-  /// tolerance's); once they have booked more, it narrows by as much, back to the tolerance's.
-  /// A scene without merges (a shock tube, one body's fans) keeps fan steps of the tolerance.
-  double fan_scale_ = 1.0;
+  double light_bodies_ = 0.0;     ///< bodies whose one piece is light
   double widest_fan_step_ = 0.0;  ///< reported as fan_step_max
-  void balance_fans() {
-    const double scale = error_fans_ < kFanBalance * error_merges_
-                             ? std::min(kMaxFanScale, fan_scale_ * kResolutionStep)
-                             : std::max(1.0, fan_scale_ / kResolutionStep);
-    if (scale == fan_scale_) return;
-    fan_scale_ = scale;
-    fan_step_ = kFanStepPerTolerance * resolution_ * fan_scale_;
-    widest_fan_step_ = std::max(widest_fan_step_, fan_step_);
-  }
-  double error_merges_ = 0.0;  ///< L1 error of fronts merged
+  double error_merges_ = 0.0;     ///< L1 error of fronts merged
   /// What share_carried has grown the carried errors by, where a split's outgoing waves
   /// sweep faster than its incoming ones (see rebalance).
   double error_scattered_ = 0.0;
@@ -670,11 +696,27 @@ class Tracker {
   /// The L1 error of a rarefaction step at time t: the exact fan spreads the step's jump σ
   /// over |Δλ| (t − born) in X (no more than the piece), which a jump in its middle misses
   /// by σ/4 of that width on average.
-  double fan_error(int id, double t) const;
+  /// smooth_on: the step's wave goes on as a smooth wave (it crosses, merges, reflects or is
+  /// sampled), which the reconstruction holds to its own error where it applies; otherwise
+  /// (a shock or a crack takes the step in) what met it saw a jump, and the staircase's error
+  /// is what it carries on.
+  double fan_error(int id, double t, bool smooth_on = true) const;
+  /// The jump of front `id`'s own invariant (J+ for a C+ front, J− for a C− one), right side
+  /// less left side.
+  double own_jump(int id) const;
+  /// The L1 error at time t of smooth step `id` where the samples reconstruct its wave (see
+  /// reconstruct): what the lines through the steps' values miss the wave's curvature by,
+  /// |ΔJ'| w²/12 with ΔJ' the change of slope across the step (for the first or last step of a
+  /// wave, between the wave's first two strips) and w the strips' width, and, for a fan step
+  /// of a genuinely nonlinear body, how far its path has drifted since it was born from the
+  /// characteristic of its mean value (its jump times the difference of its speed from the
+  /// mean of its sides' characteristic speeds, times its age). kInf where its wave is not
+  /// reconstructed next to it (a lone step, a step between plateaus).
+  double reconstruction_error(int id, double t) const;
   /// Books fan step `id`'s error up to t in error_fans_ and returns it, for the wave that
   /// carries it on (every error in the bound travels with a wave or stays where booked).
-  double book_fan_error(int id, double t) {
-    const double booked = fan_error(id, t);
+  double book_fan_error(int id, double t, bool smooth_on = true) {
+    const double booked = fan_error(id, t, smooth_on);
     error_fans_ += booked;
     return booked;
   }

@@ -1,0 +1,206 @@
+// Smooth waves between their steps: a smooth wave (a fan, a piston's ramp, what they become) is
+// moved as steps, fronts that are characteristics to second order, and sampled as the line
+// through the values at those characteristics, not as the staircase of its steps.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "tracker.hpp"
+
+namespace rigidity::characteristics {
+namespace {
+
+/// A linear correction of one family's invariant, c(X) = c0 + q (X − X0), kept where its
+/// sign is `sign` and zero elsewhere (sign 0: kept everywhere).
+struct Ramp {
+  double c0 = 0.0, q = 0.0, X0 = 0.0;
+  int sign = 0;
+
+  [[nodiscard]] double at(double X) const {
+    const double c = c0 + q * (X - X0);
+    return sign != 0 && sign * c <= 0.0 ? 0.0 : c;
+  }
+  /// ∫ c(X) dX over [a, b].
+  [[nodiscard]] double integral(double a, double b) const {
+    if (sign != 0 && q != 0.0) {
+      const double zero = X0 - c0 / q;
+      if (sign * q > 0.0) {
+        a = std::max(a, zero);
+      } else {
+        b = std::min(b, zero);
+      }
+    }
+    if (!(b > a)) return 0.0;
+    return c0 * (b - a) + 0.5 * q * ((b - X0) * (b - X0) - (a - X0) * (a - X0));
+  }
+};
+
+}  // namespace
+
+int Tracker::strip_edge(int from, int family, int Node::*step) const {
+  int id = from;
+  for (;;) {
+    const Node& n = nodes_[id];
+    if (n.kind != NodeKind::front || !n.smooth || n.family == family) return id;
+    id = n.*step;
+  }
+}
+
+double Tracker::own_jump(int id) const {
+  const Node& f = nodes_[id];
+  const Region& left = nodes_[f.prev].right;
+  const Region& right = f.right;
+  return (right.state.rapidity - left.state.rapidity) +
+         f.family * (memo_->psi(*right.material, right.state.stretch) - memo_->psi(*left.material, left.state.stretch));
+}
+
+double Tracker::wedge_slope(int a, int b, int family, double t) const {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const double Xa = nodes_[a].X_at(t), Xb = nodes_[b].X_at(t), width = Xb - Xa;
+  if (!(width > 0.0)) return kNaN;
+  const Material* m = nodes_[a].right.material;
+  if (nodes_[nodes_[a].prev].right.material != m || nodes_[b].right.material != m) return kNaN;
+  const int a2 = strip_edge(nodes_[a].prev, family, &Node::prev);
+  const int b2 = strip_edge(nodes_[b].next, family, &Node::next);
+  const double left = is_step(a2, family) ? Xa - nodes_[a2].X_at(t) : kInf;
+  const double right = is_step(b2, family) ? nodes_[b2].X_at(t) - Xb : kInf;
+  const double narrower = std::min(left, right);
+  if (narrower == kInf || width > kPlateauRatio * narrower) return kNaN;  // (two lone steps: a plateau too)
+  const double ja = own_jump(a), jb = own_jump(b);
+  if (!(ja * jb > 0.0)) return kNaN;  // an extremum between two waves: each is carried on to it
+  return 0.5 * (ja + jb) / width;
+}
+
+/// For each family, the strip of the region right of node n between the nearest fronts of
+/// that family (or what bounds the strip: an end, an interface, a true jump), and on it:
+///   - between two steps of one smooth wave, the line through their values (wedge_slope);
+///   - on a plateau next to a step whose wave goes on beyond it, that wave's line carried on
+///     from the step's value until it meets the plateau's: the head or tail of the wave, whose
+///     first step stands half a strip inside it (the plateau keeps its value: the steps
+///     stand at the means of their sides, and the outermost has the plateau on one); carried
+///     on to the end or interface that bounds the strip where the wave is reflecting there
+///     (the steps of the other family leaving it are smooth) and the strip is no wider than
+///     kPlateauRatio of the wave's strips.
+/// Where the invariant changes so does the lab length per label, ρ = s/γ, at ∂ρ/∂J± = −ρ
+/// (tanh φ ± 1/c_s)/2: the lab position moves by the integral of that change from the strip's
+/// left edge, region by region, less the share of X − X_left of what it comes to over the
+/// whole strip, so that the lab positions of the strip's edges stay those of the steps.
+bool Tracker::reconstruct(int n, double X, double t, State& state, double& dx) const {
+  const Node& node = nodes_[n];
+  if (node.next == kNone || node.kind == NodeKind::right_end || node.kind == NodeKind::light_store) return false;
+  const Region& region = node.right;
+  const Material& m = *region.material;
+  const double psi = memo_->psi(m, region.state.stretch);
+  double j[2] = {region.state.rapidity - psi, region.state.rapidity + psi};  // [0] J−, [1] J+
+  bool changed = false;
+  dx = 0.0;
+  // An end or interface from which the steps of a smooth wave of `family` leave: the wave
+  // that makes them by reflection (or transmission) reaches it, and its line goes on to it.
+  const auto reflecting = [&](int edge, int family) {
+    const Node& e = nodes_[edge];
+    if (e.kind == NodeKind::front) return false;
+    const int step = e.kind == NodeKind::right_end ? strip_edge(e.prev, family, &Node::prev)
+                                                   : strip_edge(e.next, family, &Node::next);
+    return step != kNone && is_step(step, family);
+  };
+  for (int family : {-1, +1}) {
+    const int l = node.kind == NodeKind::front ? strip_edge(n, family, &Node::prev) : n;
+    const int r = strip_edge(node.next, family, &Node::next);
+    const double Xl = nodes_[l].X_at(t), Xr = nodes_[r].X_at(t);
+    if (!(Xr > Xl)) continue;
+    Ramp ramps[2];
+    int count = 0;
+    if (is_step(l, family) && is_step(r, family)) {
+      const double slope = wedge_slope(l, r, family, t);
+      if (!std::isnan(slope)) ramps[count++] = Ramp{0.0, slope, 0.5 * (Xl + Xr), 0};
+    }
+    // (A step still on the line of its centred fan has the exact fan beyond it, see fan_sample.)
+    if (count == 0 && is_step(r, family) && nodes_[r].fan == kNone) {  // a wave right of the plateau
+      const int r2 = strip_edge(nodes_[r].next, family, &Node::next);
+      const double slope = is_step(r2, family) ? wedge_slope(r, r2, family, t) : std::nan("");
+      const double jump = own_jump(r);
+      const bool on = reflecting(l, -family) && Xr - Xl <= kPlateauRatio * (nodes_[r2].X_at(t) - Xr);
+      if (slope * jump > 0.0) ramps[count++] = Ramp{0.5 * jump, slope, Xr, on ? 0 : jump > 0.0 ? 1 : -1};
+    }
+    const bool wedge = count == 1 && ramps[0].sign == 0;
+    if (!wedge && is_step(l, family) && nodes_[l].fan == kNone) {  // a wave left of the plateau
+      const int l2 = strip_edge(nodes_[l].prev, family, &Node::prev);
+      const double slope = is_step(l2, family) ? wedge_slope(l2, l, family, t) : std::nan("");
+      const double jump = own_jump(l);
+      const bool on = reflecting(r, -family) && Xr - Xl <= kPlateauRatio * (Xl - nodes_[l2].X_at(t));
+      if (slope * jump > 0.0) ramps[count++] = Ramp{-0.5 * jump, slope, Xl, on ? 0 : jump > 0.0 ? -1 : 1};
+    }
+    if (count == 0) continue;
+    double to_X = 0.0, to_r = 0.0;
+    bool past = false, one_material = true;  // past: the walk is right of the region that holds X
+    for (int k = l; k != r; k = nodes_[k].next) {
+      const Region& here = nodes_[k].right;
+      if (here.material != &m) {
+        one_material = false;
+        break;
+      }
+      const double rate = -0.5 * label_density(here.state) *
+                          (std::tanh(here.state.rapidity) + family / m.sound_speed(here.state.stretch));
+      const double lo = nodes_[k].X_at(t), hi = nodes_[nodes_[k].next].X_at(t);
+      double part = 0.0, to_here = 0.0;
+      for (int i = 0; i < count; ++i) {
+        part += rate * ramps[i].integral(lo, hi);
+        if (k == n) to_here += rate * ramps[i].integral(lo, X);
+      }
+      to_r += part;
+      if (past) continue;
+      to_X += k == n ? to_here : part;
+      past = k == n;
+    }
+    if (!one_material) continue;
+    double correction = 0.0;
+    for (int i = 0; i < count; ++i) correction += ramps[i].at(X);
+    j[family > 0 ? 1 : 0] += correction;
+    dx += to_X - to_r * (X - Xl) / (Xr - Xl);
+    changed = true;
+  }
+  if (!changed) return false;
+  const Solved<Stretch> s = memo_->stretch_at_psi(m, 0.5 * (j[1] - j[0]));
+  if (!s.ok() || !representable(s.value)) return false;
+  state = State{0.5 * (j[1] + j[0]), s.value};
+  return true;
+}
+
+double Tracker::reconstruction_error(int id, double t) const {
+  const Node& n = nodes_[id];
+  if (!n.smooth) return kInf;
+  const int l = strip_edge(n.prev, n.family, &Node::prev);
+  const int r = strip_edge(n.next, n.family, &Node::next);
+  const double left = is_step(l, n.family) ? wedge_slope(l, id, n.family, t) : std::nan("");
+  const double right = is_step(r, n.family) ? wedge_slope(id, r, n.family, t) : std::nan("");
+  const double X = n.X_at(t);
+  double curvature = 0.0, width = 0.0;  // the change of slope across the step, and the strips' width
+  if (!std::isnan(left) && !std::isnan(right)) {
+    curvature = std::abs(right - left);
+    width = 0.5 * (nodes_[r].X_at(t) - nodes_[l].X_at(t));
+  } else if (!std::isnan(left) || !std::isnan(right)) {
+    // The first or last step of its wave: the change of slope between the wave's first two
+    // strips, which the line carried on to the plateau (see reconstruct) misses the wave by.
+    const bool inward_right = !std::isnan(right);
+    const int near = inward_right ? r : l;
+    const int far = strip_edge(inward_right ? nodes_[near].next : nodes_[near].prev, n.family,
+                               inward_right ? &Node::next : &Node::prev);
+    if (!is_step(far, n.family)) return kInf;
+    const double next = inward_right ? wedge_slope(near, far, n.family, t) : wedge_slope(far, near, n.family, t);
+    if (std::isnan(next)) return kInf;
+    curvature = std::abs(next - (inward_right ? right : left));
+    width = std::abs(nodes_[near].X_at(t) - X);
+  } else {
+    return kInf;
+  }
+  double error = curvature * width * width / 12.0;
+  if (n.front_kind == FrontKind::rarefaction) {
+    // How far its path has drifted from the characteristic of its mean value.
+    const Region& before = nodes_[n.prev].right;
+    const double mean = 0.5 * (speeds_of(before, n.family).lagrangian + speeds_of(n.right, n.family).lagrangian);
+    error += std::abs(own_jump(id)) * std::abs(n.dXdt - mean) * (t - n.born);
+  }
+  return error;
+}
+
+}  // namespace rigidity::characteristics
