@@ -229,33 +229,11 @@ class SceneBuilder {
       out.piston.times.push_back(t.number);
       out.piston.rapidities.push_back(std::atanh(table.entries[i].entries[1].number));
     }
-    if (side["interpolation"].word == "linear") out.piston = staircase(out.piston, scene.solver.tolerance);
+    // Both solvers run a linear table as a staircase of steps of the tolerance in rapidity;
+    // the front tracker steps it as its smooth waves (see Tracker::build_walls).
+    if (side["interpolation"].word == "linear")
+      out.piston = linear_piston(out.piston.times, out.piston.rapidities, scene.solver.tolerance);
   }
-
-  /// A piston whose velocity ramps linearly between the rows of its table, as the staircase
-  /// both solvers run: each ramp split into steps of at most solver.tolerance in rapidity
-  /// (at most kMaxRampSteps per row), each step at the velocity of the ramp at its middle.
-  /// After the last row the velocity stays.
-  static PistonMotion staircase(const PistonMotion& rows, double tolerance) {
-    PistonMotion out;
-    for (std::size_t i = 0; i + 1 < rows.times.size(); ++i) {
-      const double t0 = rows.times[i], t1 = rows.times[i + 1];
-      const double v0 = std::tanh(rows.rapidities[i]), v1 = std::tanh(rows.rapidities[i + 1]);
-      const double span = std::abs(rows.rapidities[i + 1] - rows.rapidities[i]);
-      const int steps = static_cast<int>(std::clamp(std::ceil(span / tolerance), 1.0, kMaxRampSteps));
-      for (int k = 0; k < steps; ++k) {
-        const double a = (k + 0.5) / steps;  // the middle of the step
-        out.times.push_back(t0 + (t1 - t0) * k / steps);
-        out.rapidities.push_back(std::atanh(v0 + (v1 - v0) * a));
-      }
-    }
-    out.times.push_back(rows.times.back());
-    out.rapidities.push_back(rows.rapidities.back());
-    out.ramps = true;
-    return out;
-  }
-
-  static constexpr double kMaxRampSteps = 1000.0;
 
   static void read_solver(const Checked& solver, SolverDecl& out) {
     out.method = solver["method"].word == "finite_volume" ? SolverMethod::finite_volume : SolverMethod::characteristics;

@@ -54,26 +54,32 @@ double Tracker::own_jump(int id) const {
          f.family * (memo_->psi(*right.material, right.state.stretch) - memo_->psi(*left.material, left.state.stretch));
 }
 
-double Tracker::wedge_slope(int a, int b, int family, double t) const {
+Tracker::Wedge Tracker::wedge(int a, int b, int family, double t) const {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   const double Xa = nodes_[a].X_at(t), Xb = nodes_[b].X_at(t), width = Xb - Xa;
-  if (!(width > 0.0)) return kNaN;
+  if (!(width > 0.0)) return {kNaN, kNaN};
   const Material* m = nodes_[a].right.material;
-  if (nodes_[nodes_[a].prev].right.material != m || nodes_[b].right.material != m) return kNaN;
+  if (nodes_[nodes_[a].prev].right.material != m || nodes_[b].right.material != m) return {kNaN, kNaN};
   const int a2 = strip_edge(nodes_[a].prev, family, &Node::prev);
   const int b2 = strip_edge(nodes_[b].next, family, &Node::next);
   const double left = is_step(a2, family) ? Xa - nodes_[a2].X_at(t) : kInf;
   const double right = is_step(b2, family) ? nodes_[b2].X_at(t) - Xb : kInf;
   const double narrower = std::min(left, right);
-  if (narrower == kInf || width > kPlateauRatio * narrower) return kNaN;  // (two lone steps: a plateau too)
+  if (narrower == kInf || width > kPlateauRatio * narrower) return {kNaN, kNaN};  // (two lone steps: a plateau too)
   const double ja = own_jump(a), jb = own_jump(b);
-  if (!(ja * jb > 0.0)) return kNaN;  // an extremum between two waves: each is carried on to it
-  return 0.5 * (ja + jb) / width;
+  if (!(ja * jb > 0.0)) return {kNaN, kNaN};  // an extremum between two waves: each is carried on to it
+  // Each step's value: its sides' values weighted by the widths of its two strips (a plateau
+  // beside it counts as wide as this strip), which is the value a line through the strips'
+  // means takes at the step.
+  const double wl = left <= kPlateauRatio * width ? left : width;
+  const double wr = right <= kPlateauRatio * width ? right : width;
+  const double at_a = -ja * width / (wl + width), at_b = jb * width / (width + wr);
+  return {(at_b - at_a) / width, at_a};
 }
 
 /// For each family, the strip of the region right of node n between the nearest fronts of
 /// that family (or what bounds the strip: an end, an interface, a true jump), and on it:
-///   - between two steps of one smooth wave, the line through their values (wedge_slope);
+///   - between two steps of one smooth wave, the line through their values (wedge);
 ///   - on a plateau next to a step whose wave goes on beyond it, that wave's line carried on
 ///     from the step's value until it meets the plateau's: the head or tail of the wave, whose
 ///     first step stands half a strip inside it (the plateau keeps its value: the steps
@@ -111,24 +117,26 @@ bool Tracker::reconstruct(int n, double X, double t, State& state, double& dx) c
     Ramp ramps[2];
     int count = 0;
     if (is_step(l, family) && is_step(r, family)) {
-      const double slope = wedge_slope(l, r, family, t);
-      if (!std::isnan(slope)) ramps[count++] = Ramp{0.0, slope, 0.5 * (Xl + Xr), 0};
+      const Wedge w = wedge(l, r, family, t);
+      if (!std::isnan(w.slope)) ramps[count++] = Ramp{w.at_a, w.slope, Xl, 0};
     }
     // (A step still on the line of its centred fan has the exact fan beyond it, see fan_sample.)
     if (count == 0 && is_step(r, family) && nodes_[r].fan == kNone) {  // a wave right of the plateau
       const int r2 = strip_edge(nodes_[r].next, family, &Node::next);
-      const double slope = is_step(r2, family) ? wedge_slope(r, r2, family, t) : std::nan("");
+      const Wedge w = is_step(r2, family) ? wedge(r, r2, family, t) : Wedge{};
       const double jump = own_jump(r);
       const bool on = reflecting(l, -family) && Xr - Xl <= kPlateauRatio * (nodes_[r2].X_at(t) - Xr);
-      if (slope * jump > 0.0) ramps[count++] = Ramp{0.5 * jump, slope, Xr, on ? 0 : jump > 0.0 ? 1 : -1};
+      if (w.slope * jump > 0.0) ramps[count++] = Ramp{w.at_a + jump, w.slope, Xr, on ? 0 : jump > 0.0 ? 1 : -1};
     }
-    const bool wedge = count == 1 && ramps[0].sign == 0;
-    if (!wedge && is_step(l, family) && nodes_[l].fan == kNone) {  // a wave left of the plateau
+    const bool in_wedge = count == 1 && ramps[0].sign == 0;
+    if (!in_wedge && is_step(l, family) && nodes_[l].fan == kNone) {  // a wave left of the plateau
       const int l2 = strip_edge(nodes_[l].prev, family, &Node::prev);
-      const double slope = is_step(l2, family) ? wedge_slope(l2, l, family, t) : std::nan("");
+      const Wedge w = is_step(l2, family) ? wedge(l2, l, family, t) : Wedge{};
       const double jump = own_jump(l);
-      const bool on = reflecting(r, -family) && Xr - Xl <= kPlateauRatio * (Xl - nodes_[l2].X_at(t));
-      if (slope * jump > 0.0) ramps[count++] = Ramp{-0.5 * jump, slope, Xl, on ? 0 : jump > 0.0 ? -1 : 1};
+      const double X2 = nodes_[l2].X_at(t);
+      const bool on = reflecting(r, -family) && Xr - Xl <= kPlateauRatio * (Xl - X2);
+      if (w.slope * jump > 0.0)
+        ramps[count++] = Ramp{w.at_a + w.slope * (Xl - X2) - jump, w.slope, Xl, on ? 0 : jump > 0.0 ? -1 : 1};
     }
     if (count == 0) continue;
     double to_X = 0.0, to_r = 0.0;
@@ -171,8 +179,8 @@ double Tracker::reconstruction_error(int id, double t) const {
   if (!n.smooth) return kInf;
   const int l = strip_edge(n.prev, n.family, &Node::prev);
   const int r = strip_edge(n.next, n.family, &Node::next);
-  const double left = is_step(l, n.family) ? wedge_slope(l, id, n.family, t) : std::nan("");
-  const double right = is_step(r, n.family) ? wedge_slope(id, r, n.family, t) : std::nan("");
+  const double left = is_step(l, n.family) ? wedge(l, id, n.family, t).slope : std::nan("");
+  const double right = is_step(r, n.family) ? wedge(id, r, n.family, t).slope : std::nan("");
   const double X = n.X_at(t);
   double curvature = 0.0, width = 0.0;  // the change of slope across the step, and the strips' width
   if (!std::isnan(left) && !std::isnan(right)) {
@@ -186,7 +194,7 @@ double Tracker::reconstruction_error(int id, double t) const {
     const int far = strip_edge(inward_right ? nodes_[near].next : nodes_[near].prev, n.family,
                                inward_right ? &Node::next : &Node::prev);
     if (!is_step(far, n.family)) return kInf;
-    const double next = inward_right ? wedge_slope(near, far, n.family, t) : wedge_slope(far, near, n.family, t);
+    const double next = inward_right ? wedge(near, far, n.family, t).slope : wedge(far, near, n.family, t).slope;
     if (std::isnan(next)) return kInf;
     curvature = std::abs(next - (inward_right ? right : left));
     width = std::abs(nodes_[near].X_at(t) - X);

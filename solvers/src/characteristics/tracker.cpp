@@ -76,7 +76,8 @@ void Tracker::build_walls() {
     w.x0 = d.position;
     w.t0 = 0.0;
     if (d.type == BoundaryType::piston) {
-      w.motion = d.piston;
+      // A linear table's ramps in steps of the width fans have: smooth waves between them.
+      w.motion = d.piston.ramps ? linear_piston(d.piston.row_times, d.piston.row_rapidities, fan_step_) : d.piston;
       w.rapidity = w.motion.rapidities.empty() ? 0.0 : w.motion.rapidities.front();
     }
   }

@@ -563,14 +563,17 @@ class Tracker {
   /// the other family: the first node that is a front of `family`, or anything that bounds
   /// the strip a smooth wave of `family` may fill (an end, an interface, a true jump).
   [[nodiscard]] int strip_edge(int from, int family, int Node::*step) const;
-  /// The slope in X of `family`'s invariant over the strip between its smooth steps a < b at
-  /// time t, the line through the values at the steps' own characteristics (the means of
-  /// their two sides, which their speeds follow to second order): (j_a + j_b)/2 over the
-  /// strip's width, with j a step's jump. NaN where the strip is no part of one smooth wave:
-  /// more than kPlateauRatio times as wide as the narrower strip next to it, with no strip of
-  /// the wave next to it, between steps of opposite jumps (an extremum where two waves meet),
-  /// or holding another material.
-  [[nodiscard]] double wedge_slope(int a, int b, int family, double t) const;
+  /// The line of `family`'s invariant over the strip between its smooth steps a < b at time t:
+  /// through the values at the steps' own characteristics, each its two sides' values weighted
+  /// by the widths of its two strips (the means of its sides where they are alike, which the
+  /// steps' speeds follow to second order). Its slope in X and its value at a, relative to the
+  /// strip's; NaN where the strip is no part of one smooth wave: more than kPlateauRatio times
+  /// as wide as the narrower strip next to it, with no strip of the wave next to it, between
+  /// steps of opposite jumps (an extremum where two waves meet), or holding another material.
+  struct Wedge {
+    double slope = std::numeric_limits<double>::quiet_NaN(), at_a = 0.0;
+  };
+  [[nodiscard]] Wedge wedge(int a, int b, int family, double t) const;
   static constexpr double kPlateauRatio = 3.0;
   /// The state at label X of the region right of node n with the smooth waves through it
   /// reconstructed, and the lab position's change dx (see reconstruction.cpp). Returns false

@@ -49,9 +49,18 @@ struct PistonMotion {
   std::vector<double> times;
   std::vector<double> rapidities;
   /// The table is interpolated linearly and these are the steps of its ramps: each change of
-  /// speed emits a step of a smooth wave, not a jump.
+  /// speed emits a step of a smooth wave, not a jump. The rows as written are kept, for a
+  /// solver that steps the ramps otherwise (linear_piston).
   bool ramps = false;
+  std::vector<double> row_times, row_rapidities;
 };
+
+/// A piston whose velocity ramps linearly between the rows of its table (times, rapidities),
+/// as a staircase: each ramp split into steps of at most `step` in rapidity (at most 1000 per
+/// row), each step at the velocity of the ramp at its middle; after the last row the velocity
+/// stays.
+[[nodiscard]] PistonMotion linear_piston(const std::vector<double>& times, const std::vector<double>& rapidities,
+                                         double step);
 
 struct BoundaryDecl {
   BoundaryType type = BoundaryType::free;
