@@ -219,6 +219,7 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     nodes_[b].carried = carried[1];
     nodes_[b].smooth = smooth_in.out(1);
     nodes_[b].kink = 0.0;
+    nodes_[b].offset = 0.0;
     set_front(b, +1, kinds[1], *m, left, right, t, X, x, off_curve[1], born[1], strength_plus);
     schedule_meet(keep_before);
     schedule_meet(b);
@@ -258,6 +259,11 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   const double jump_since = jump_in != nullptr ? jump_in->t0 : 0.0;
   const int jump_family = jump_in != nullptr ? jump_in->family : 0;
   na.kink = nb.kink = 0.0;
+  // Each wave's step goes on with its value (two of one family meeting make a jump).
+  const double offset_minus = na.family != nb.family ? (na.family < 0 ? na.offset : nb.offset) : 0.0;
+  const double offset_plus = na.family != nb.family ? (na.family > 0 ? na.offset : nb.offset) : 0.0;
+  na.offset = smooth_in.out(0) ? offset_minus : 0.0;
+  nb.offset = smooth_in.out(1) ? offset_plus : 0.0;
   na.smooth = smooth_in.out(0);
   nb.smooth = smooth_in.out(1);
   set_front(a, -1, kinds[0], *m, left, star, t, X, x, off_curve[0], born[0], strength_minus,
@@ -584,8 +590,11 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   // speed in the labels): shared among the outgoing waves below.
   double carried_in = 0.0, sweep_in = 0.0, fastest_in = 0.0, released = 0.0;
   int fronts_in = 0;
-  // Which outgoing waves go on as smooth waves (see smooth_out below).
+  // Which outgoing waves go on as smooth waves (see smooth_out below), and the offsets of
+  // their steps' values (Node::offset).
   SmoothIn smooth_in;
+  double offset_in[2] = {0.0, 0.0};
+  int count_in[2] = {0, 0};
   int families_in[2] = {kNone, kNone};  // the piece each family came in from
   for (int id : group) {
     Node& n = nodes_[id];
@@ -597,6 +606,8 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     }
     const int f = n.family > 0 ? 1 : 0;
     smooth_in.add(f, n.smooth, families_in[f] == n.piece);
+    offset_in[f] += n.offset;
+    ++count_in[f];
     families_in[f] = n.piece;
     carried_in += n.carried;
     n.carried = 0.0;
@@ -726,6 +737,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     // What a smooth wave's step becomes is a step of that wave, not a centred fan of its own.
     for (int id : emitted_left_) leave_fan(nodes_[id]);
     for (int id : emitted_right_) leave_fan(nodes_[id]);
+    set_offsets(first, last, left_boundary, right_boundary, offset_in, count_in, t);
   }
 
   for (int f = 0; f < 2; ++f) {
@@ -937,6 +949,52 @@ void Tracker::hold_back_weak_wave(RiemannSolution& sol, const Region& left, cons
   const int far_piece = node.kind == NodeKind::right_end ? nodes_[node.partner].piece : node.piece;
   node.defect_cap = weaker * (piece_length(node.piece) + piece_length(far_piece));
   ++suppressed_;
+}
+
+void Tracker::set_offsets(int first, int last, bool left_boundary, bool right_boundary, const double offset_in[2],
+                          const int count_in[2], double t) {
+  if (left_boundary != right_boundary) {
+    // A reflection at an end: the one step that came in leaves as the one step of the other
+    // family, its value mirrored by a wall or piston and kept by a free end; a ramping piston
+    // adds twice what its ramp's rapidity now is beyond the staircase step it is on.
+    const std::vector<int>& out = left_boundary ? emitted_right_ : emitted_left_;
+    const int f_in = left_boundary ? 0 : 1;
+    if (out.size() != 1 || count_in[f_in] != 1 || count_in[1 - f_in] != 0) return;
+    const Node& end = nodes_[left_boundary ? first : last];
+    double offset = offset_in[f_in];
+    Node& step = nodes_[out.front()];
+    if (end.attach == Attach::boundary) {
+      const Wall& w = walls_[end.partner];
+      offset = -offset;
+      if (w.motion.ramps) {
+        const double ahead = 2.0 * (ramp_rapidity(w.motion, t) - w.rapidity);
+        offset += ahead;
+        // Until the piston's next step, the region it leaves behind the step holds the
+        // staircase's value, off by up to `ahead` from the ramp's over what the step sweeps.
+        const double until = std::min(w.next_change(), scene_.t_end) - t;
+        const double error = 0.5 * std::abs(ahead) * std::abs(step.dXdt) * std::max(0.0, until);
+        error_fans_ += error;
+        step.carried += error;
+      }
+    }
+    if (step.smooth) step.offset = offset;
+    return;
+  }
+  // A crossing or a transmission: each family's one step goes on with its value.
+  for (int f = 0; f < 2; ++f) {
+    const std::vector<int>& out = f == 0 ? emitted_left_ : emitted_right_;
+    if (out.size() == 1 && count_in[f] == 1 && nodes_[out.front()].smooth) nodes_[out.front()].offset = offset_in[f];
+  }
+}
+
+double Tracker::ramp_rapidity(const PistonMotion& motion, double t) {
+  const std::vector<double>& times = motion.row_times;
+  const std::vector<double>& rapidities = motion.row_rapidities;
+  if (times.empty()) return 0.0;
+  if (!(t < times.back())) return rapidities.back();
+  const std::size_t i = static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin()) - 1;
+  const double v0 = std::tanh(rapidities[i]), v1 = std::tanh(rapidities[i + 1]);
+  return std::atanh(v0 + (v1 - v0) * (t - times[i]) / (times[i + 1] - times[i]));
 }
 
 }  // namespace rigidity::characteristics

@@ -73,7 +73,8 @@ Tracker::Wedge Tracker::wedge(int a, int b, int family, double t) const {
   // means takes at the step.
   const double wl = left <= kPlateauRatio * width ? left : width;
   const double wr = right <= kPlateauRatio * width ? right : width;
-  const double at_a = -ja * width / (wl + width), at_b = jb * width / (width + wr);
+  const double at_a = -ja * width / (wl + width) + nodes_[a].offset;
+  const double at_b = jb * width / (width + wr) + nodes_[b].offset;
   return {(at_b - at_a) / width, at_a};
 }
 

@@ -192,6 +192,12 @@ struct Node {
   /// on a polygon that the path through the smooth wave cuts at each step's mean value; in
   /// between it is off by up to about kink × kink_dt / 2, which the bound takes at t_end.
   double kink = 0.0, kink_dt = 0.0;
+  /// Smooth steps: the step's own value of its family's invariant less the one its sides give
+  /// it (see Tracker::wedge). A step a ramping piston reflects leaves at the ramp's rapidity of
+  /// that instant, where the region next to the piston holds the step of the staircase it is
+  /// in: twice their difference; a wall reflects it with the invariant's sign, a free end
+  /// as it is, crossings and transmissions carry it on.
+  double offset = 0.0;
 
   [[nodiscard]] double X_at(double t) const { return X0 + dXdt * (t - t0); }
   [[nodiscard]] double x_at(double t) const { return x0 + dxdt * (t - t0); }
@@ -447,6 +453,12 @@ class Tracker {
     return r.hyperbolic;
   }
   void resolve_group(std::vector<int>& group, double t);
+  /// The offsets (Node::offset) of the smooth steps resolve_group has just emitted, from those
+  /// of the fronts that came in (per family: their sum and count).
+  void set_offsets(int first, int last, bool left_boundary, bool right_boundary, const double offset_in[2],
+                   const int count_in[2], double t);
+  /// The rapidity of a linearly interpolated piston's ramp at time t (its rows as written).
+  static double ramp_rapidity(const PistonMotion& motion, double t);
   /// The states of the wave of `family` from `outer` to `star`: a new rarefaction fan (`fresh`:
   /// no step of a smooth wave came in) in steps of fan_step_ in Ψ, and in at least
   /// kMinFanSteps where steps of 2 × the resolution would make as many; a step going on, one.
