@@ -85,7 +85,7 @@ bool Tracker::make_lattice(int piece, double t) {
       last_minus = place(last_minus, last_plus, plus_speed, minus_speed, X, t);
       lp.minus.push_back(LightFront{X, invariant(m, before.state, -1), invariant(m, f.right.state, -1), t, x,
                                     last_minus.f, last_minus.p, 0, speeds_of(f.right, +1).lagrangian});
-      lp.minus.back().carried = f.carried;
+      enter_light(lp.minus, f, t);
       ++minus_seen;
     }
   }
@@ -134,14 +134,14 @@ void Tracker::lattice_enter(int piece, int family, int id, double t) {
     lp.plus.push_back(LightFront{X, invariant(m, right.state, +1), invariant(m, left.state, +1), t, x, c.f, c.p,
                                  static_cast<long>(lp.minus.size()) - lp.minus_emitted,
                                  speeds_of(left, -1).lagrangian});
-    lp.plus.back().carried = f.carried;
+    enter_light(lp.plus, f, t);
   } else {
     const Characteristic prev = lp.minus.empty() ? lp.ref_minus : of(lp.minus.back());
     const Characteristic c =
         place(prev, lp.ref_plus, speeds_of(left, +1).lagrangian, speeds_of(left, -1).lagrangian, X, t);
     lp.minus.push_back(LightFront{X, invariant(m, left.state, -1), invariant(m, right.state, -1), t, x, c.f, c.p, 0,
                                   speeds_of(right, +1).lagrangian});
-    lp.minus.back().carried = f.carried;
+    enter_light(lp.minus, f, t);
   }
   if (family < 0) ++lp.minus_emitted;
 }

@@ -64,7 +64,7 @@ void Tracker::make_light(double t) {
       if (f.family > 0) {
         lp.plus.push_back(
             LightFront{x - t, invariant(*m, right, +1), invariant(*m, left, +1), t, x, 0.0, 0.0, minus_right});
-        lp.plus.back().carried = f.carried;
+        enter_light(lp.plus, f, t);
       } else {
         lp.minus.push_front(LightFront{x + t, invariant(*m, left, -1), invariant(*m, right, -1), t, x});
         lp.minus.front().carried = f.carried;
@@ -200,14 +200,14 @@ void Tracker::absorb_light(int piece, double t) {
       const double x = f.x_at(t);
       lp.plus.push_back(LightFront{x - t, invariant(m, f.right.state, +1), invariant(m, nodes_[f.prev].right.state, +1),
                                    t, x, 0.0, 0.0, static_cast<long>(lp.minus.size()) - lp.minus_emitted});
-      lp.plus.back().carried = f.carried;
+      enter_light(lp.plus, f, t);
     }
     for (const int id : minus) {
       const Node& f = nodes_[id];
       const double x = f.x_at(t);
       lp.minus.push_back(
           LightFront{x + t, invariant(m, nodes_[f.prev].right.state, -1), invariant(m, f.right.state, -1), t, x});
-      lp.minus.back().carried = f.carried;
+      enter_light(lp.minus, f, t);
       ++lp.minus_emitted;
     }
   }

@@ -245,6 +245,7 @@ struct LightFront {
   /// places the fronts of the other family that last met it, fixed for its life.
   double behind_speed = 0.0;
   double carried = 0.0;  ///< the L1 error its wave carries (Node::carried)
+  bool smooth = false;   ///< a step of a smooth wave (Node::smooth), sampled as the staircase it is here
   [[nodiscard]] double x_at(double t, int family) const { return intercept + family * t; }
 };
 
@@ -483,6 +484,20 @@ class Tracker {
   void schedule_arrivals(int piece);
   void arrive(int piece, int family, double t);
   void absorb_light(int piece, double t);
+  /// The front just put at the back of a light or lattice piece's queue takes what node f
+  /// carries. A light or lattice piece holds a smooth wave as the staircase of its steps: a
+  /// step that follows another of its wave into it carries the staircase's error too, σ/4 of
+  /// the width between them in the labels.
+  void enter_light(std::deque<LightFront>& queue, const Node& f, double t) {
+    LightFront& entered = queue.back();
+    entered.carried = f.carried;
+    entered.smooth = f.smooth;
+    if (!f.smooth || queue.size() < 2 || !queue[queue.size() - 2].smooth) return;
+    const double width = std::abs(speeds_of(f.right, f.family).lagrangian) * (t - queue[queue.size() - 2].t0);
+    const double error = 0.25 * f.strength * width;
+    error_fans_ += error;
+    entered.carried += error;
+  }
   bool merge_light(int piece, int family, double t);
   [[nodiscard]] State light_state(const Material& m, double j_plus, double j_minus) const;
   // ---- lattice pieces (lattice.cpp) ------------------------------------------------------
