@@ -536,7 +536,7 @@ TEST(ErrorBound, HoldsAgainstFinerRunsOfRandomScenesWithAGasBar) {
     worst = std::max(worst, error / (bound + fine_bound));
   }
   EXPECT_GE(compared, 20);
-  // Measured at session 14: the worst 0.83, most near 0.45 (the stability factor 2).
+  // Measured: the worst 0.83, most near 0.45 (the stability factor 2).
   EXPECT_GT(worst, 0.5) << "a bound far above every error says little";
 }
 

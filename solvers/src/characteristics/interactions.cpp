@@ -886,8 +886,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
 /// than assumed, so that an error carried into a softer body grows as the wave does. Where
 /// several fronts meet, the error does not shrink with their cancellation, only with the
 /// label speeds (the ratio is at least the slowest outgoing over the fastest incoming speed,
-/// at most 1; until session 14 at least 1, which kept an error carried from a fast body into
-/// a slow one at its size: 231 of 400 random scenes' bounds are now 0.92 times theirs); a
+/// at most 1, so that an error carried from a fast body into a slow one shrinks with it); a
 /// wave that sets off far stronger ones (a front that makes an interface part) hands on at
 /// most kMaxScattering times its error. A wave held back at the node (see
 /// hold_back_weak_wave) leaves now, late: the error it booked while held goes on with the
