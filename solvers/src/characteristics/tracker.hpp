@@ -723,13 +723,13 @@ class Tracker {
   }
   /// The part of error_defects_ that waves released late took on (share_carried).
   double error_defects_released_ = 0.0;
-  /// The L1 error of a rarefaction step at time t: the exact fan spreads the step's jump σ
-  /// over |Δλ| (t − born) in X (no more than the piece), which a jump in its middle misses
-  /// by σ/4 of that width on average.
-  /// smooth_on: the step's wave goes on as a smooth wave (it crosses, merges, reflects or is
-  /// sampled), which the reconstruction holds to its own error where it applies; otherwise
-  /// (a shock or a crack takes the step in) what met it saw a jump, and the staircase's error
-  /// is what it carries on.
+  /// The L1 error of a smooth step at time t. As a staircase: the exact fan spreads a fan
+  /// step's jump σ over |Δλ| (t − born) in X, a compression wave's step stands for the ramp
+  /// to its neighbours (no more than the room between them either way), which a jump in its
+  /// middle misses by σ/4 of that width on average. With smooth_on (its wave goes on as a
+  /// smooth wave: it crosses, merges, reflects, meets a shock or is sampled) the least of
+  /// that and what the reconstruction misses it by (reconstruction_error); without (a crack
+  /// takes it in) the staircase's.
   double fan_error(int id, double t, bool smooth_on = true) const;
   /// The jump of front `id`'s own invariant (J+ for a C+ front, J− for a C− one), right side
   /// less left side.
