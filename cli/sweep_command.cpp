@@ -7,103 +7,29 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <thread>
 
+#include "mpi_sweep.hpp"
 #include "rigidity/cli.hpp"
 #include "rigidity/errors.hpp"
 #include "rigidity/output.hpp"
 #include "rigidity/run_recorder.hpp"
 #include "rigidity/sweep.hpp"
 
-#ifdef RIGIDITY_HAVE_MPI
-#include <mpi.h>
-#endif
-
 namespace rigidity::cli {
 
 namespace {
 
-#ifdef RIGIDITY_HAVE_MPI
-/// Started by mpirun or srun (which set these), not by hand.
-bool launched_by_mpi() {
-  return std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr || std::getenv("PMI_SIZE") != nullptr ||
-         std::getenv("PMIX_RANK") != nullptr;
+/// "; by rank: 6, 6": the cases each MPI rank ran (empty without MPI).
+std::string by_rank(const MpiSweep* mpi) {
+  if (mpi == nullptr || mpi->size() < 2) return "";
+  std::string text = "; by rank:";
+  for (const std::size_t n : mpi->cases_by_rank()) text += (text.back() == ':' ? " " : ", ") + std::to_string(n);
+  return text;
 }
-
-/// MPI for the life of the command.
-class MpiSession {
- public:
-  MpiSession() {
-    MPI_Init(nullptr, nullptr);
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-    MPI_Comm_size(MPI_COMM_WORLD, &size_);
-  }
-  ~MpiSession() { MPI_Finalize(); }
-  MpiSession(const MpiSession&) = delete;
-  MpiSession& operator=(const MpiSession&) = delete;
-  [[nodiscard]] int rank() const { return rank_; }
-  [[nodiscard]] int size() const { return size_; }
-
- private:
-  int rank_ = 0, size_ = 1;
-};
-
-constexpr int kTagRow = 1;   // worker -> rank 0: a finished row ("EXIT_CODE ROW"), or "" for the first request
-constexpr int kTagCase = 2;  // rank 0 -> worker: a case index to run
-constexpr int kTagStop = 3;  // rank 0 -> worker: no more cases
-
-/// Rank 0: hands out case indices one at a time to whichever rank asks (dynamic load
-/// balancing) and takes the rows back; it runs no case itself.
-SweepExecutor mpi_dispatcher(int ranks) {
-  return [ranks](const std::vector<std::size_t>& pending, const SweepRowSink& done) {
-    std::size_t next = 0;
-    int running = ranks - 1;
-    std::vector<bool> busy(static_cast<std::size_t>(ranks), false);
-    std::vector<std::size_t> assigned(static_cast<std::size_t>(ranks), 0);
-    while (running > 0) {
-      MPI_Status status;
-      MPI_Probe(MPI_ANY_SOURCE, kTagRow, MPI_COMM_WORLD, &status);
-      int length = 0;
-      MPI_Get_count(&status, MPI_CHAR, &length);
-      std::string message(static_cast<std::size_t>(length), '\0');
-      MPI_Recv(message.data(), length, MPI_CHAR, status.MPI_SOURCE, kTagRow, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-      const auto source = static_cast<std::size_t>(status.MPI_SOURCE);
-      if (!message.empty() && busy[source]) {
-        const std::size_t space = message.find(' ');
-        done(assigned[source], std::stoi(message.substr(0, space)), message.substr(space + 1));
-      }
-      busy[source] = false;
-      if (next < pending.size() && !interrupt_requested()) {
-        const unsigned long index = pending[next++];
-        assigned[source] = index;
-        busy[source] = true;
-        MPI_Send(&index, 1, MPI_UNSIGNED_LONG, status.MPI_SOURCE, kTagCase, MPI_COMM_WORLD);
-      } else {
-        MPI_Send(nullptr, 0, MPI_UNSIGNED_LONG, status.MPI_SOURCE, kTagStop, MPI_COMM_WORLD);
-        --running;
-      }
-    }
-  };
-}
-
-/// Ranks 1..N-1: ask for a case, run it, send its row back, until told to stop.
-void mpi_worker(const Sweep& sweep, const std::string& out_dir) {
-  std::string message;  // empty: the first request
-  for (;;) {
-    MPI_Send(message.data(), static_cast<int>(message.size()), MPI_CHAR, 0, kTagRow, MPI_COMM_WORLD);
-    MPI_Status status;
-    unsigned long index = 0;
-    MPI_Recv(&index, 1, MPI_UNSIGNED_LONG, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
-    if (status.MPI_TAG == kTagStop) return;
-    const SweepRow row = run_sweep_case(sweep, index, sweep_case_dir(sweep, out_dir, index));
-    // A case cut short by Ctrl-C goes back as no row: it runs again next time.
-    message =
-        row.status == "interrupted" ? std::string() : std::to_string(row.exit_code) + " " + sweep_csv_row(sweep, row);
-  }
-}
-#endif
 
 }  // namespace
 
@@ -130,26 +56,23 @@ int sweep_command(std::span<const std::string> args, std::ostream& out) {
   }
   const bool quiet = parsed.has("--quiet");
   const std::string& file = parsed.positional[0];
-#ifdef RIGIDITY_HAVE_MPI
-  std::optional<MpiSession> mpi;
-  if (launched_by_mpi()) mpi.emplace();
-  const bool worker_rank = mpi && mpi->rank() != 0;
-  if (worker_rank) {
-    // Rank 0 reports the errors; the other ranks only run cases.
+  const std::string out_dir = parsed.value("--out").value_or("out/" + std::filesystem::path(file).stem().string());
+  const std::unique_ptr<MpiSweep> mpi = launched_by_mpi() ? open_mpi_sweep() : nullptr;
+  if (mpi && mpi->rank() != 0) {
+    // Rank 0 reports the errors and the interrupt; the other ranks only run cases.
     try {
       const Sweep sweep = load_sweep_file(file);
-      const StopOnSignals stop_on_signals(true);  // rank 0 says what happens
-      mpi_worker(sweep, parsed.value("--out").value_or("out/" + std::filesystem::path(file).stem().string()));
+      const StopOnSignals stop_on_signals(true);
+      static_cast<void>(mpi->work(sweep, out_dir));
     } catch (const std::exception&) {
       return kExitInvalidInput;
     }
-    return kExitOk;
+    return interrupt_requested() ? StopOnSignals::exit_status() : kExitOk;
   }
-#endif
   const Sweep sweep = load_sweep_file(file);
 
   SweepOptions options;
-  options.out_dir = parsed.value("--out").value_or("out/" + std::filesystem::path(file).stem().string());
+  options.out_dir = out_dir;
   options.jobs = jobs;
   const bool terminal = !quiet && ::isatty(STDERR_FILENO) == 1;
   if (terminal)
@@ -164,15 +87,8 @@ int sweep_command(std::span<const std::string> args, std::ostream& out) {
   try {
     clear_interrupt();
     const StopOnSignals stop_on_signals(quiet);
-#ifdef RIGIDITY_HAVE_MPI
-    if (mpi && mpi->size() > 1) {
-      outcome = run_sweep(sweep, options, mpi_dispatcher(mpi->size()));
-    } else {
-      outcome = run_sweep(sweep, options);
-    }
-#else
-    outcome = run_sweep(sweep, options);
-#endif
+    outcome = mpi && mpi->size() > 1 ? run_sweep(sweep, options, mpi->dispatcher(sweep, options.out_dir))
+                                     : run_sweep(sweep, options);
   } catch (const OutputRefused& e) {
     throw CommandError(kExitInvalidInput, std::string(e.what()) + "; nothing was run");
   } catch (const OutputError& e) {
@@ -187,7 +103,8 @@ int sweep_command(std::span<const std::string> args, std::ostream& out) {
   }
   if (!quiet)
     out << sweep.cases.size() << " cases (" << outcome.run << " run, " << outcome.skipped << " already in the table, "
-        << outcome.failed << " not ok) in " << options.out_dir << "/sweep.csv and sweep.json\n";
+        << outcome.failed << " not ok" << by_rank(mpi.get()) << ") in " << options.out_dir
+        << "/sweep.csv and sweep.json\n";
   return kExitOk;
 }
 

@@ -363,5 +363,18 @@ TEST_F(SweepTest, GridsZipAndSamples) {
   EXPECT_THROW(static_cast<void>(load_sweep_file((dir() / "short.yaml").string())), InputError);
 }
 
+// The executable links no MPI library: the MPI sweep is the module librigidity_mpi.so, loaded
+// only under mpirun (cli/mpi_sweep.hpp).
+TEST(SweepMpi, ExecutableLinksNoMpiLibrary) {
+  FILE* pipe = ::popen(("ldd " + shell_quote(RIGIDITY_EXECUTABLE) + " 2>&1").c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string libraries;
+  std::array<char, 512> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) libraries += buffer.data();
+  ASSERT_EQ(::pclose(pipe), 0) << libraries;
+  EXPECT_TRUE(contains(libraries, "librigidity")) << "ldd lists the executable's libraries";
+  EXPECT_EQ(libraries.find("libmpi"), std::string::npos) << libraries;
+}
+
 }  // namespace
 }  // namespace rigidity::testing
