@@ -1,7 +1,8 @@
 /// `tabulated`: a material given by a table of p(s) or of e(s), read from a CSV file:
 ///
 ///   # comments and blank lines are skipped
-///   s,p                       header: s and p, or s and e (p, e in units of rest_density c²)
+///   s,p                       header: s and p, or s and e (p, e in the scene's units: Pa in an
+///                             SI scene, units of rest_density c² in a natural one)
 ///   0.5,1.5                   one row per stretch, s increasing, p (or e) decreasing
 ///   1,0                       the natural state: p = 0 (or e = 1)
 ///   2,-0.375
@@ -71,7 +72,7 @@ enum class Column { pressure, energy };
 
 struct Row {
   double s = 0.0;
-  double value = 0.0;  ///< p or e, in units of ρ00 c²
+  double value = 0.0;  ///< p or e as written: [Pa] in an SI scene, [ρ00 c²] in a natural one
   int line = 0;        ///< in the file, 1-based
 };
 
@@ -79,7 +80,11 @@ struct Table {
   std::string file;
   Column column = Column::pressure;
   std::vector<Row> rows;
-  std::vector<double> pressures;  ///< p of each row, in units of ρ00 (of an e table: derived)
+  std::vector<double> pressures;  ///< p of each row, in units of ρ00 c² (of an e table: derived)
+  /// The rows' p or e times this is in units of ρ00 c²: 1 in a natural scene, 1/(ρ00 c²) in an
+  /// SI scene (the pressure conversion of the scene loader, then ρ00).
+  double scale = 1.0;
+  std::string unit = "rest_density c^2";  ///< of the rows as written
 
   /// "FILE:LINE: row N (s = X)"
   [[nodiscard]] std::string at(std::size_t i) const {
@@ -186,21 +191,28 @@ void check_rows(Table& table) {
     throw std::invalid_argument("table '" + table.file +
                                 "': no row at s = 1; the natural state must be one of the rows");
   Row& one = table.rows[natural];
-  const double expected = table.column == Column::pressure ? 0.0 : 1.0;
-  if (std::abs(one.value - expected) > kNaturalStateTolerance)
-    throw std::invalid_argument(
-        table.at(natural) + ": " + name + " = " + text_of(one.value) + "; at the natural state " + name + " = " +
-        text_of(expected) +
-        (table.column == Column::pressure ? " (it is unstressed)" : " (e is in units of rest_density c^2)"));
-  one.value = expected;
-  for (const Row& row : table.rows) table.pressures.push_back(row.value);
+  const double expected = table.column == Column::pressure ? 0.0 : 1.0;  // [ρ00 c²]
+  if (std::abs(one.value * table.scale - expected) > kNaturalStateTolerance) {
+    const bool si = table.unit == "Pa";
+    const std::string unit = si ? " Pa" : "";
+    throw std::invalid_argument(table.at(natural) + ": " + name + " = " + text_of(one.value) + unit +
+                                "; at the natural state " + name + " = " + text_of(expected / table.scale) + unit +
+                                (table.column == Column::pressure ? " (it is unstressed)"
+                                 : si                             ? " (rest_density c^2)"
+                                                                  : " (e is in units of rest_density c^2)"));
+  }
+  one.value = expected / table.scale;
+  for (const Row& row : table.rows) table.pressures.push_back(row.value * table.scale);
   if (table.column == Column::energy) derive_pressures(table, natural);
 }
 
-/// Reads and checks the rows of `path` (relative paths from `directory`). \throws std::invalid_argument
-Table read_table(const std::string& path, const std::string& directory) {
+/// Reads and checks the rows of `path` (relative paths from `directory`), written in `units`, for
+/// a material of rest density `rest_density` (natural). \throws std::invalid_argument
+Table read_table(const std::string& path, const std::string& directory, UnitSystem units, double rest_density) {
   namespace fs = std::filesystem;
   Table table;
+  table.scale = to_natural(1.0, Dimension::pressure, units) / (units == UnitSystem::si ? rest_density : 1.0);
+  table.unit = units == UnitSystem::si ? "Pa" : "rest_density c^2";
   const fs::path written(path);
   table.file = (written.is_absolute() || directory.empty() ? written : fs::path(directory) / written).string();
   std::error_code ec;
@@ -231,7 +243,8 @@ Table read_table(const std::string& path, const std::string& directory) {
     if (!header_read) {
       if (first != "s" || (second != "p" && second != "e"))
         throw std::invalid_argument(where +
-                                    "expected the header 's,p' or 's,e' (p or e in units of rest_density c^2), got '" +
+                                    "expected the header 's,p' or 's,e' (p or e in Pa in an SI scene, in units of "
+                                    "rest_density c^2 in a natural one), got '" +
                                     std::string(content) + "'");
       table.column = second == "p" ? Column::pressure : Column::energy;
       header_read = true;
@@ -264,7 +277,8 @@ class Tabulated final : public PressureLawMaterial {
 
   static std::string doc() {
     return "A law given as a table: p(s) or e(s) from a CSV file (header 's,p' or 's,e', then one row per stretch "
-           "with s increasing; p and e in units of rest_density c^2; '#' starts a comment). p is "
+           "with s increasing; p and e in the scene's units: Pa in an SI scene, units of rest_density c^2 in a natural "
+           "one; '#' starts a comment). p is "
            "interpolated in ln s by GSL's Steffen method (monotone, C1), and W = rho00 - integral of p ds; an e "
            "table is first turned into p = -d(e s)/ds by fourth-order differences of its rows. W'', c_s and the "
            "Riemann invariant follow from W as for every material. The table must hold the natural state s = 1 (p = 0, "
@@ -281,7 +295,9 @@ class Tabulated final : public PressureLawMaterial {
   }
 
   explicit Tabulated(const ParameterValues& values)
-      : Tabulated(values, read_table(values.text("table"), values.directory())) {}
+      : Tabulated(values,
+                  read_table(values.text("table"), values.directory(), values.units(), values.number("rest_density"))) {
+  }
 
   [[nodiscard]] std::string_view model() const override { return kName; }
   [[nodiscard]] std::vector<double> law_breaks() const override { return log_stretches_; }
@@ -357,7 +373,8 @@ class Tabulated final : public PressureLawMaterial {
         const double square = s.value() * stiffness_value / enthalpy;  // c_s² = s W''/(e + p)  (SPEC §1)
         if (!(square <= 1.0 + kCausalityTolerance))
           throw std::invalid_argument(where + "acausal: the sound speed c_s = " + text_of(std::sqrt(square)) +
-                                      " exceeds c");
+                                      " exceeds c (the table's p and e are read in " + table_.unit +
+                                      ", the units of the scene)");
       }
     }
   }

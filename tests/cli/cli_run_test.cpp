@@ -5,6 +5,7 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -349,6 +350,49 @@ TEST_F(CliTest, RunRefusesADirectoryThatIsNotARunAsInvalidInputBeforeSolving) {
   EXPECT_FALSE(contains(r.out, "bodies at")) << "it solved before refusing";
   EXPECT_EQ(read_text(dir() / "precious" / "notes.txt"), "keep me\n");
   EXPECT_EQ(std::distance(fs::directory_iterator(dir() / "precious"), fs::directory_iterator{}), 1);
+}
+
+// A tabulated law follows the scene's units (materials/tabulated.cpp): in an SI scene its
+// pressures are in Pa. The table samples Hooke steel (rest density 7850 kg/m^3, V = 5100 m/s,
+// p = rho00 c^2 b^2 (1/s^2 - 1)/((R + 1) R), b = V/c, R = sqrt(b^2 + (1 - b^2)/s^2)) every 0.002
+// in s; the bar hits the wall at 1000 m/s: wall pressure rho00 V v = 4.0035e10 Pa, the bar
+// leaves at -1000 m/s, momentum books closed, no negative dissipation.
+TEST_F(CliTest, TabulatedLawInPascalRunsTheSteelWallImpact) {
+  constexpr double rho = 7850.0, c = 299792458.0, b = 5100.0 / c;
+  {
+    std::ofstream table(dir() / "steel.csv");
+    table << "s,p\n";
+    table.precision(17);
+    for (int i = 0; i <= 400; ++i) {
+      const double s = i == 200 ? 1.0 : 0.6 + 0.002 * i;
+      const double r = std::sqrt(b * b + (1.0 - b * b) / (s * s));
+      table << s << "," << rho * c * c * b * b * (1.0 / (s * s) - 1.0) / ((r + 1.0) * r) << "\n";
+    }
+  }
+  std::ofstream(dir() / "steel.yaml")
+      << "name: steel_table\nunits: si\n"
+         "materials:\n  steel: {model: tabulated, table: steel.csv, rest_density: 7850}\n"
+         "bodies:\n  - {name: bar, material: steel, length: 1.0, velocity: 1000}\n"
+         "boundaries: {left: {type: free}, right: {type: wall}}\n"
+         "time: {end: 0.001}\n"
+         "outputs:\n  probes:\n"
+         "    - {name: wall, body: bar, at: right, quantities: [p], every: 1.0e-5}\n";
+  const CliOutcome r = rigidity("run steel.yaml --out run --quiet");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const mini_json::Value summary = mini_json::parse(read_text(dir() / "run" / "summary.json"));
+  EXPECT_EQ(summary["status"].string, "ok");
+  ASSERT_EQ(summary["bodies"].array.size(), 1u);
+  EXPECT_NEAR(summary["bodies"][0]["velocity_mean"].number, -1000.0, 1e-6);
+  const mini_json::Value& books = summary["conservation"];
+  EXPECT_GE(books["energy_dissipated"].number, 0.0);
+  const double momentum = books["momentum_initial"].number;
+  EXPECT_NEAR(books["momentum_final"].number - momentum, books["wall_impulse"].number, 1e-12 * momentum);
+  double wall_pressure = 0.0;
+  std::istringstream probes(read_text(dir() / "run" / "probes.csv"));
+  for (std::string line; std::getline(probes, line);)
+    if (line.find(",wall,p,") != std::string::npos)
+      wall_pressure = std::max(wall_pressure, std::stod(line.substr(line.rfind(',') + 1)));
+  EXPECT_NEAR(wall_pressure, rho * 5100.0 * 1000.0, 1e-6 * 4.0035e10);
 }
 
 }  // namespace

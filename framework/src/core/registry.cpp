@@ -196,6 +196,7 @@ void remember_admissible(const std::string& key) {
 std::shared_ptr<const Material> build_material(const MaterialInfo& info, const ParameterValues& given) {
   ParameterValues values;
   values.set_directory(given.directory());
+  values.set_units(given.units());
   for (const ParameterSpec& spec : info.parameters) {
     if (spec.default_number) values.set(spec.name, *spec.default_number);
     if (spec.default_text) values.set(spec.name, *spec.default_text);

@@ -94,6 +94,7 @@ class SceneBuilder {
       const MaterialInfo& info = MaterialRegistry::instance().at(model);  // the schema admits registered models only
       ParameterValues values;
       values.set_directory(directory_.string());  // a relative file name (a table) is the scene's
+      values.set_units(units_);                   // and so are the units of its numbers
       std::string text;
       for (const ParameterSpec& spec : info.parameters) {
         const Checked* value = entry.find(spec.name);

@@ -69,10 +69,16 @@ class ParameterValues {
   void set_directory(std::string directory) { directory_ = std::move(directory); }
   [[nodiscard]] const std::string& directory() const { return directory_; }
 
+  /// The scene's unit system, in which the numbers of a file among the texts (a table) are
+  /// written (the loader sets it); the numbers above are already natural.
+  void set_units(UnitSystem units) { units_ = units; }
+  [[nodiscard]] UnitSystem units() const { return units_; }
+
  private:
   std::map<std::string, double> numbers_;
   std::map<std::string, std::string> texts_;
   std::string directory_;
+  UnitSystem units_ = UnitSystem::natural;
 };
 
 /// The `rest_density` declaration every material shares (ρ00, default 1).
