@@ -81,11 +81,12 @@ bool Tracker::make_lattice(int piece, double t) {
       lp.plus.push_front(LightFront{X, invariant(m, f.right.state, +1), invariant(m, before.state, +1), t, x,
                                     last_plus.f, last_plus.p, minus_total - minus_seen, minus_speed});
       lp.plus.front().carried = f.carried;
+      lp.plus.front().smooth = f.smooth;
     } else {
       last_minus = place(last_minus, last_plus, plus_speed, minus_speed, X, t);
       lp.minus.push_back(LightFront{X, invariant(m, before.state, -1), invariant(m, f.right.state, -1), t, x,
                                     last_minus.f, last_minus.p, 0, speeds_of(f.right, +1).lagrangian});
-      enter_light(lp.minus, f, t);
+      enter_light(lp.minus, f, t, true);
       ++minus_seen;
     }
   }
@@ -134,14 +135,14 @@ void Tracker::lattice_enter(int piece, int family, int id, double t) {
     lp.plus.push_back(LightFront{X, invariant(m, right.state, +1), invariant(m, left.state, +1), t, x, c.f, c.p,
                                  static_cast<long>(lp.minus.size()) - lp.minus_emitted,
                                  speeds_of(left, -1).lagrangian});
-    enter_light(lp.plus, f, t);
+    enter_light(lp.plus, f, t, true);
   } else {
     const Characteristic prev = lp.minus.empty() ? lp.ref_minus : of(lp.minus.back());
     const Characteristic c =
         place(prev, lp.ref_plus, speeds_of(left, +1).lagrangian, speeds_of(left, -1).lagrangian, X, t);
     lp.minus.push_back(LightFront{X, invariant(m, left.state, -1), invariant(m, right.state, -1), t, x, c.f, c.p, 0,
                                   speeds_of(right, +1).lagrangian});
-    enter_light(lp.minus, f, t);
+    enter_light(lp.minus, f, t, true);
   }
   if (family < 0) ++lp.minus_emitted;
 }
@@ -186,10 +187,12 @@ void Tracker::dissolve_lattice(int piece, double t) {
     double strength;
     State left;
     double carried;
+    bool smooth;
   };
   std::vector<Placed> placed;
   walk_lattice_fronts(piece, t, [&](const LatticeFront& f, const State& left) {
-    placed.push_back(Placed{f.X, f.family, std::abs(f.front->j_ahead - f.front->j_behind), left, f.front->carried});
+    placed.push_back(
+        Placed{f.X, f.family, std::abs(f.front->j_ahead - f.front->j_behind), left, f.front->carried, f.front->smooth});
   });
   const State right_most = nodes_[lp.store].right.state;
   const Node& left_end = nodes_[pc.left_end];
@@ -205,6 +208,7 @@ void Tracker::dissolve_lattice(int piece, double t) {
     set_front(id, p.family, FrontKind::contact, m, p.left, right, t, X, x, 0.0, t, p.strength);
     nodes_[id].right = Region{&m, right};
     nodes_[id].carried = p.carried;
+    nodes_[id].smooth = p.smooth;
     prev = id;
   }
   link(prev, pc.right_end);

@@ -64,10 +64,11 @@ void Tracker::make_light(double t) {
       if (f.family > 0) {
         lp.plus.push_back(
             LightFront{x - t, invariant(*m, right, +1), invariant(*m, left, +1), t, x, 0.0, 0.0, minus_right});
-        enter_light(lp.plus, f, t);
+        enter_light(lp.plus, f, t, false);
       } else {
         lp.minus.push_front(LightFront{x + t, invariant(*m, left, -1), invariant(*m, right, -1), t, x});
         lp.minus.front().carried = f.carried;
+        lp.minus.front().smooth = f.smooth;
         ++minus_right;
       }
     }
@@ -155,6 +156,7 @@ void Tracker::arrive(int piece, int family, double t) {
   n.born = f.t0;
   n.strength = std::abs(f.j_behind - f.j_ahead);
   n.carried = f.carried;
+  n.smooth = f.smooth;
   if (family > 0) {
     // ahead of it: the state next to the right end; behind it: J+ it brings, J− there.
     const Region ahead = nodes_[lp.store].right;
@@ -200,14 +202,14 @@ void Tracker::absorb_light(int piece, double t) {
       const double x = f.x_at(t);
       lp.plus.push_back(LightFront{x - t, invariant(m, f.right.state, +1), invariant(m, nodes_[f.prev].right.state, +1),
                                    t, x, 0.0, 0.0, static_cast<long>(lp.minus.size()) - lp.minus_emitted});
-      enter_light(lp.plus, f, t);
+      enter_light(lp.plus, f, t, false);
     }
     for (const int id : minus) {
       const Node& f = nodes_[id];
       const double x = f.x_at(t);
       lp.minus.push_back(
           LightFront{x + t, invariant(m, nodes_[f.prev].right.state, -1), invariant(m, f.right.state, -1), t, x});
-      enter_light(lp.minus, f, t);
+      enter_light(lp.minus, f, t, false);
       ++lp.minus_emitted;
     }
   }
@@ -343,6 +345,7 @@ bool Tracker::merge_light(int piece, int family, double t) {
   error_merges_ += cost;
   ++merged_;
   older.carried += newer.carried + cost;
+  older.smooth = older.smooth && newer.smooth;
   if (want_fronts_ && t > older.t0) {
     recorder_.front(FrontSegment{older.t0, older.x0, t, x_old, FrontKind::contact, family});
   }

@@ -52,8 +52,10 @@ bool Tracker::locate(int body, double X, double t, Region& region, double& x) co
       walk_light(piece, t, [&](double x_a, double, double X_a, double X_b, const State& state, bool last) {
         if (found || (X >= X_b && !last)) return;  // at a front: the region right of it, as below
         found = true;
-        region = Region{le.right.material, state};
         x = x_a + (X - X_a) * label_density(state);
+        State smooth = state;
+        light_reconstruct(piece, x, t, smooth);
+        region = Region{le.right.material, smooth};
       });
       return found;
     }
@@ -159,8 +161,10 @@ void Tracker::sample(const SampleTime& st) {
             const double Xi = l0 * (i + taken) / (snap.samples - 1);
             if (i + taken >= snap.samples || Xi > X_end || (Xi >= X_b && !last)) return;
             const double x = x_a + (Xi - X_a) * label_density(state);
+            State smooth = state;
+            light_reconstruct(*piece, x, t, smooth);
             for (Quantity q : snap.quantities)
-              recorder_.snapshot(SnapshotSample{t, static_cast<int>(b), Xi, q, quantity_value(q, m, state, Xi, x)});
+              recorder_.snapshot(SnapshotSample{t, static_cast<int>(b), Xi, q, quantity_value(q, m, smooth, Xi, x)});
             ++taken;
           }
         });

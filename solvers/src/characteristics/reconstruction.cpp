@@ -212,4 +212,47 @@ double Tracker::reconstruction_error(int id, double t) const {
   return error;
 }
 
+bool Tracker::light_reconstruct(int piece, double x, double t, State& state) const {
+  const LightPiece& lp = light_[piece];
+  if (lp.lattice) return false;
+  const Material& m = *nodes_[lp.store].right.material;
+  double j[2] = {invariant(m, state, -1), invariant(m, state, +1)};  // [0] J−, [1] J+
+  bool changed = false;
+  for (int family : {-1, +1}) {
+    const std::deque<LightFront>& q = family > 0 ? lp.plus : lp.minus;
+    const auto at = [&](std::size_t i) { return q[i].x_at(t, family); };
+    // C+ fronts stand right to left in their queue, C− fronts left to right: the four steps
+    // around x, left to right (kNone where there is none).
+    const std::size_t n = q.size();
+    std::size_t k = 0;  // C+: fronts right of x; C−: fronts at or left of x
+    while (k < n && (family > 0 ? at(k) > x : at(k) <= x)) ++k;
+    const auto index = [&](long offset) -> long {  // offset −2, −1, 0, +1 from the strip, left to right
+      const long i = family > 0 ? static_cast<long>(k) - 1 - offset : static_cast<long>(k) + offset;
+      return i >= 0 && i < static_cast<long>(n) ? i : kNone;
+    };
+    const long a = family > 0 ? index(1) : index(-1), b = family > 0 ? index(0) : index(0);
+    if (a == kNone || b == kNone || !q[a].smooth || !q[b].smooth) continue;
+    const long a2 = family > 0 ? index(2) : index(-2), b2 = family > 0 ? index(-1) : index(1);
+    const double Xa = at(a), Xb = at(b), width = Xb - Xa;
+    if (!(width > 0.0)) continue;
+    const double left = a2 != kNone && q[a2].smooth ? Xa - at(a2) : kInf;
+    const double right = b2 != kNone && q[b2].smooth ? at(b2) - Xb : kInf;
+    const double narrower = std::min(left, right);
+    if (narrower == kInf || width > kPlateauRatio * narrower) continue;
+    // Each front's value on its left and on its right: a C+ front runs into j_ahead on its right.
+    const auto left_of = [&](const LightFront& f) { return family > 0 ? f.j_behind : f.j_ahead; };
+    const auto right_of = [&](const LightFront& f) { return family > 0 ? f.j_ahead : f.j_behind; };
+    const double ja = right_of(q[a]) - left_of(q[a]), jb = right_of(q[b]) - left_of(q[b]);
+    if (!(ja * jb > 0.0)) continue;
+    const double wl = left <= kPlateauRatio * width ? left : width;
+    const double wr = right <= kPlateauRatio * width ? right : width;
+    const double at_a = -ja * width / (wl + width), at_b = jb * width / (width + wr);
+    j[family > 0 ? 1 : 0] = right_of(q[a]) + at_a + (at_b - at_a) * (x - Xa) / width;
+    changed = true;
+  }
+  if (!changed) return false;
+  state = light_state(m, j[1], j[0]);
+  return true;
+}
+
 }  // namespace rigidity::characteristics

@@ -271,8 +271,16 @@ RunResult Tracker::run() {
     static constexpr const char* kWhy[4] = {
         "merges that held the live fronts to their cap (max(100, 0.25/tolerance) per body): the waves scatter into "
         "more fronts than the cap lets the run follow",
-        "fan steps, whose error grows as their fans spread (the widest step is fan_step_max)",
+        "the steps of smooth waves (fans and piston ramps, reconstructed between them where they "
+        "cross only each other, staircases where shocks and rigid bodies meet them; the widest step is "
+        "fan_step_max)",
         "weak waves held back at interfaces and contacts", "droplets kept with their pieces"};
+    // What a smaller tolerance does to each part, and at what cost.
+    static constexpr const char* kLower[4] = {
+        "a smaller tolerance raises the cap, at a cost that grows as its inverse square",
+        "a smaller tolerance lowers it in proportion where the waves are reconstructed (and as its square root "
+        "where they are staircases), at a cost that grows as its inverse",
+        "a smaller tolerance lowers it in proportion", "a smaller tolerance lowers it"};
     if (!(largest == 3 && spray_coarsened)) {  // a spray has said so above
       // What merges and fan steps made, once the waves that carry it have split at
       // interfaces, contacts and ends, may have grown: say so where it has.
@@ -285,9 +293,7 @@ RunResult Tracker::run() {
       result_.warnings.push_back("the error bound " + two_digits(error_bound) +
                                  " is above solver.tolerance = " + number(scene_.solver.tolerance) + ": most of it (" +
                                  two_digits(kStability * parts[largest] / total_length_) + ") booked by " +
-                                 kWhy[largest] + grown +
-                                 "; a smaller tolerance lowers it at a cost that grows as its inverse square, a "
-                                 "shorter time.end in proportion");
+                                 kWhy[largest] + grown + "; " + kLower[largest] + ", a shorter time.end in proportion");
     }
   }
   Conservation& c = result_.conservation;

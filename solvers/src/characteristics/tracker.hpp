@@ -485,16 +485,31 @@ class Tracker {
   void arrive(int piece, int family, double t);
   void absorb_light(int piece, double t);
   /// The front just put at the back of a light or lattice piece's queue takes what node f
-  /// carries. A light or lattice piece holds a smooth wave as the staircase of its steps: a
-  /// step that follows another of its wave into it carries the staircase's error too, σ/4 of
-  /// the width between them in the labels.
-  void enter_light(std::deque<LightFront>& queue, const Node& f, double t) {
+  /// carries. A step that follows another of its wave into the piece carries what sampling
+  /// misses the wave by over the strip between them: where a light piece reconstructs it, the
+  /// line's miss (the change of slope from the strip before × the width² / 12, see
+  /// reconstruction_error); where a lattice piece holds it as a staircase, or no strip of the
+  /// wave came before, the staircase's, σ/4 of the width.
+  void enter_light(std::deque<LightFront>& queue, const Node& f, double t, bool lattice) {
     LightFront& entered = queue.back();
     entered.carried = f.carried;
     entered.smooth = f.smooth;
-    if (!f.smooth || queue.size() < 2 || !queue[queue.size() - 2].smooth) return;
-    const double width = std::abs(speeds_of(f.right, f.family).lagrangian) * (t - queue[queue.size() - 2].t0);
-    const double error = 0.25 * f.strength * width;
+    const std::size_t n = queue.size();
+    if (!f.smooth || n < 2 || !queue[n - 2].smooth) return;
+    const double speed = std::abs(speeds_of(f.right, f.family).lagrangian);
+    const double width = speed * (t - queue[n - 2].t0);
+    const auto jump = [](const LightFront& g) { return std::abs(g.j_ahead - g.j_behind); };
+    double error = 0.25 * f.strength * width;  // the staircase's
+    if (!lattice && n >= 3 && queue[n - 3].smooth) {
+      // The line's: the change of slope between the last two strips × their width² / 12.
+      const double before = speed * (queue[n - 2].t0 - queue[n - 3].t0);
+      if (width > 0.0 && before > 0.0) {
+        const double slope = 0.5 * (jump(queue[n - 2]) + jump(entered)) / width;
+        const double slope_before = 0.5 * (jump(queue[n - 3]) + jump(queue[n - 2])) / before;
+        const double mean = 0.5 * (width + before);
+        error = std::min(error, std::abs(slope - slope_before) * mean * mean / 12.0);
+      }
+    }
     error_fans_ += error;
     entered.carried += error;
   }
@@ -606,6 +621,11 @@ class Tracker {
   /// reconstructed, and the lab position's change dx (see reconstruction.cpp). Returns false
   /// where nothing is reconstructed.
   bool reconstruct(int n, double X, double t, State& state, double& dx) const;
+  /// The same in a light piece (whose fronts run on lab lines), at lab position x where the
+  /// staircase's state is `state`: between two smooth steps of one wave, each family's
+  /// invariant on the line through the steps' values (the edges of waves stay as they are).
+  /// Lattice pieces are sampled as their staircases. Returns false where nothing changes.
+  bool light_reconstruct(int piece, double x, double t, State& state) const;
   // ---- the error budget (see README "What the tolerance means") --------------------
   double weak_ = 0.0;                   ///< strength |ΔJ| below which an interface or contact emits no wave
   double weak_merging_ = 0.0;           ///< strength below which two fronts of one family merging emit no reflection
