@@ -35,6 +35,27 @@ struct Ramp {
   }
 };
 
+/// The line of one family's invariant over a strip of `width` between two smooth steps of
+/// jumps ja and jb, with the wave's strips beside it `left` and `right` wide (kInf: none): its
+/// slope and its value at the left step, relative to the strip's value; NaN where the strip
+/// is no part of one smooth wave (more than kPlateauRatio times as wide as the narrower strip
+/// beside it, or none beside it) or lies between steps of opposite jumps (an extremum where two
+/// waves meet: each is carried on to it). Each step's value is its sides' values weighted by
+/// the widths of its two strips (a plateau beside it counts as wide as this strip): the value a
+/// line through the strips' means takes at the step.
+struct Line {
+  double slope = std::numeric_limits<double>::quiet_NaN(), at_a = 0.0, at_b = 0.0;
+};
+Line line_through(double ja, double jb, double width, double left, double right, double plateau_ratio) {
+  const double narrower = std::min(left, right);
+  if (!(width > 0.0) || narrower == kInf || width > plateau_ratio * narrower) return {};
+  if (!(ja * jb > 0.0)) return {};
+  const double wl = left <= plateau_ratio * width ? left : width;
+  const double wr = right <= plateau_ratio * width ? right : width;
+  const double at_a = -ja * width / (wl + width), at_b = jb * width / (width + wr);
+  return {(at_b - at_a) / width, at_a, at_b};
+}
+
 }  // namespace
 
 int Tracker::strip_edge(int from, int family, int Node::*step) const {
@@ -64,17 +85,9 @@ Tracker::Wedge Tracker::wedge(int a, int b, int family, double t) const {
   const int b2 = strip_edge(nodes_[b].next, family, &Node::next);
   const double left = is_step(a2, family) ? Xa - nodes_[a2].X_at(t) : kInf;
   const double right = is_step(b2, family) ? nodes_[b2].X_at(t) - Xb : kInf;
-  const double narrower = std::min(left, right);
-  if (narrower == kInf || width > kPlateauRatio * narrower) return {kNaN, kNaN};  // (two lone steps: a plateau too)
-  const double ja = own_jump(a), jb = own_jump(b);
-  if (!(ja * jb > 0.0)) return {kNaN, kNaN};  // an extremum between two waves: each is carried on to it
-  // Each step's value: its sides' values weighted by the widths of its two strips (a plateau
-  // beside it counts as wide as this strip), which is the value a line through the strips'
-  // means takes at the step.
-  const double wl = left <= kPlateauRatio * width ? left : width;
-  const double wr = right <= kPlateauRatio * width ? right : width;
-  const double at_a = -ja * width / (wl + width) + nodes_[a].offset;
-  const double at_b = jb * width / (width + wr) + nodes_[b].offset;
+  const Line line = line_through(own_jump(a), own_jump(b), width, left, right, kPlateauRatio);
+  if (std::isnan(line.slope)) return {kNaN, kNaN};
+  const double at_a = line.at_a + nodes_[a].offset, at_b = line.at_b + nodes_[b].offset;
   return {(at_b - at_a) / width, at_a};
 }
 
@@ -234,20 +247,15 @@ bool Tracker::light_reconstruct(int piece, double x, double t, State& state) con
     if (a == kNone || b == kNone || !q[a].smooth || !q[b].smooth) continue;
     const long a2 = family > 0 ? index(2) : index(-2), b2 = family > 0 ? index(-1) : index(1);
     const double Xa = at(a), Xb = at(b), width = Xb - Xa;
-    if (!(width > 0.0)) continue;
     const double left = a2 != kNone && q[a2].smooth ? Xa - at(a2) : kInf;
     const double right = b2 != kNone && q[b2].smooth ? at(b2) - Xb : kInf;
-    const double narrower = std::min(left, right);
-    if (narrower == kInf || width > kPlateauRatio * narrower) continue;
     // Each front's value on its left and on its right: a C+ front runs into j_ahead on its right.
     const auto left_of = [&](const LightFront& f) { return family > 0 ? f.j_behind : f.j_ahead; };
     const auto right_of = [&](const LightFront& f) { return family > 0 ? f.j_ahead : f.j_behind; };
-    const double ja = right_of(q[a]) - left_of(q[a]), jb = right_of(q[b]) - left_of(q[b]);
-    if (!(ja * jb > 0.0)) continue;
-    const double wl = left <= kPlateauRatio * width ? left : width;
-    const double wr = right <= kPlateauRatio * width ? right : width;
-    const double at_a = -ja * width / (wl + width), at_b = jb * width / (width + wr);
-    j[family > 0 ? 1 : 0] = right_of(q[a]) + at_a + (at_b - at_a) * (x - Xa) / width;
+    const Line line =
+        line_through(right_of(q[a]) - left_of(q[a]), right_of(q[b]) - left_of(q[b]), width, left, right, kPlateauRatio);
+    if (std::isnan(line.slope)) continue;
+    j[family > 0 ? 1 : 0] = right_of(q[a]) + line.at_a + line.slope * (x - Xa);
     changed = true;
   }
   if (!changed) return false;
