@@ -334,6 +334,7 @@ outputs: {snapshots: [{times: [7.0, 20.0], quantities: [x], samples: 4001}]}
 )";
 
 TEST(Spray, ARigidFluidSprayFinishesWithFewPiecesConsistentGeometryAndClosedBooks) {
+  const CheckedInvariants checked;  // after every interaction
   // Two rigid-fluid bodies between a wall and three solids: every collision of unequal
   // pieces knocks a piece off (Newton's cradle), and an exact run shatters them into
   // hundreds of ever smaller pieces (t = 20 does not finish in 20 s). With droplets held to
@@ -502,6 +503,7 @@ TEST(ErrorBound, HoldsAgainstExactRunsOfRandomLinearlyDegenerateBars) {
 // against a bonded wall, t = 2 to 4: at tolerance 1e-2 the bound holds against a run at a
 // hundred times smaller tolerance (itself within its own bound of the truth).
 TEST(ErrorBound, HoldsAgainstFinerRunsOfRandomScenesWithAGasBar) {
+  const CheckedInvariants checked;  // after every interaction
   std::mt19937 random(11);
   const auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(random); };
   int compared = 0;

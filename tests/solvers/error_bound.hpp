@@ -12,6 +12,7 @@
 
 #include "rigidity/run_result.hpp"
 #include "rigidity/scene.hpp"
+#include "rigidity/solvers/characteristics.hpp"
 
 namespace rigidity {
 
@@ -22,6 +23,15 @@ inline bool linearly_degenerate(const Scene& scene) {
       if (!scene.material_of(segment).linearly_degenerate()) return false;
   return true;
 }
+
+/// For its lifetime the front tracker checks its invariants after every interaction
+/// (check_tracker_invariants): a broken one fails the run with a NumericalError.
+struct CheckedInvariants {
+  CheckedInvariants() { check_tracker_invariants(true); }
+  ~CheckedInvariants() { check_tracker_invariants(false); }
+  CheckedInvariants(const CheckedInvariants&) = delete;
+  CheckedInvariants& operator=(const CheckedInvariants&) = delete;
+};
 
 /// A number the solver reported under `solver` in summary.json; NaN if it did not.
 inline double solver_number(const RunResult& r, std::string_view name) { return r.solver_number(name); }

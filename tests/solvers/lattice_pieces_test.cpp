@@ -14,6 +14,7 @@
 #include <tuple>
 #include <vector>
 
+#include "error_bound.hpp"
 #include "rigidity/errors.hpp"
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/solve.hpp"
@@ -113,6 +114,7 @@ TEST(LatticePieces, AHookeBarIsWhatTheNodeListMakesOfItCrossingByCrossing) {
 double time_in(const std::string& message);
 
 TEST(LatticePieces, RandomBarsBetweenAnyEndsAreWhatTheNodeListMakesOfThem) {
+  const CheckedInvariants checked;  // after every interaction
   // Hooke bars of 8–40 segments of random lengths, velocities and stretches, between free
   // ends, walls (bonded or not) and pistons (steady or changing speed, bonded or not), at a
   // tolerance that merges nothing: every sample (snapshots at an end's events included) as on

@@ -153,6 +153,7 @@ double books_tolerance(const Scene& scene, const RunResult& r) {
 }
 
 TEST(RandomScenes, KeepEveryPhysicalProperty) {
+  const CheckedInvariants checked;  // after every interaction
   SceneGenerator generator(20261121u);
   int solved = 0, refused = 0, inadmissible = 0, over_budget = 0;
   for (int i = 0; i < 200; ++i) {

@@ -185,6 +185,7 @@ RunResult Tracker::run() {
         resolve(m.node, nodes_[m.node].next, m.t);
       }
     }
+    if (validating()) validate(t_event);
   }
   const double t_end = recorder_.stopped() ? recorder_.t_reached() : scene_.t_end;
   while (!samples_.done() && !recorder_.stopped()) sample(samples_.pop());

@@ -33,6 +33,9 @@
 
 namespace rigidity::characteristics {
 
+/// Whether check_tracker_invariants is on (validate.cpp).
+[[nodiscard]] bool validating();
+
 constexpr int kNone = -1;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -349,6 +352,8 @@ class Tracker {
   }
 
   RunResult run();
+  /// Checks the invariants check_tracker_invariants names at time t (validate.cpp).
+  void validate(double t) const;
 
  private:
   // ---- set-up -------------------------------------------------------------------

@@ -1,0 +1,76 @@
+// The tracker's invariants, checked after every interaction while check_tracker_invariants is on.
+#include <atomic>
+#include <cmath>
+#include <string>
+
+#include "rigidity/errors.hpp"
+#include "rigidity/solvers/characteristics.hpp"
+#include "tracker.hpp"
+
+namespace rigidity {
+namespace {
+std::atomic<bool> checking{false};
+}  // namespace
+
+void check_tracker_invariants(bool on) { checking.store(on, std::memory_order_relaxed); }
+
+namespace characteristics {
+
+bool validating() { return checking.load(std::memory_order_relaxed); }
+
+void Tracker::validate(double t) const {
+  const auto fail = [&](const std::string& what) {
+    throw NumericalError("tracker invariant broken at t = " + number(t) + ": " + what);
+  };
+  const auto non_negative = [](double v) { return std::isfinite(v) && v >= 0.0; };
+  long fronts = 0;
+  for (std::size_t p = 0; p < pieces_.size(); ++p) {
+    const Piece& piece = pieces_[p];
+    if (piece.left_end == kNone) continue;  // rejoined into another piece
+    const int index = static_cast<int>(p);
+    if (nodes_[piece.left_end].kind != NodeKind::left_end || nodes_[piece.right_end].kind != NodeKind::right_end)
+      fail("piece " + std::to_string(p) + " does not start and end with its ends");
+    for (int n = piece.left_end;; n = nodes_[n].next) {
+      const Node& node = nodes_[n];
+      if (!node.alive || node.piece != index) fail("node " + std::to_string(n) + " is dead or in another piece");
+      if (node.kind == NodeKind::front) {
+        ++fronts;
+        if (!non_negative(node.strength) || !non_negative(node.carried))
+          fail("front " + std::to_string(n) + " has strength " + number(node.strength) + " and carries " +
+               number(node.carried));
+      } else if (node.smooth) {
+        fail("node " + std::to_string(n) + " is smooth but no front");
+      }
+      if (n == piece.right_end) break;
+      const int next = node.next;
+      if (next == kNone || nodes_[next].prev != n)
+        fail("nodes " + std::to_string(n) + " and " + std::to_string(next) + " are not linked both ways");
+      const double X = node.X_at(t), X_next = nodes_[next].X_at(t);
+      if (node.kind != NodeKind::light_store && nodes_[next].kind != NodeKind::light_store &&
+          X_next < X - 1e-9 * (1.0 + std::abs(X)))
+        fail("node " + std::to_string(next) + " at label " + number(X_next) + " is left of node " + std::to_string(n) +
+             " at " + number(X));
+    }
+    if (!is_light(index)) continue;
+    const LightPiece& lp = light_[p];
+    for (const int family : {+1, -1}) {
+      const std::deque<LightFront>& queue = family > 0 ? lp.plus : lp.minus;
+      fronts += static_cast<long>(queue.size());
+      for (std::size_t i = 0; i < queue.size(); ++i) {
+        if (!non_negative(queue[i].carried)) fail("a light front carries " + number(queue[i].carried));
+        // A light piece's C+ fronts stand right to left in their queue, its C− fronts left to right.
+        if (lp.lattice || i == 0) continue;
+        const double here = queue[i].x_at(t, family), before = queue[i - 1].x_at(t, family);
+        if (family > 0 ? here > before + 1e-9 * (1.0 + std::abs(here)) : here < before - 1e-9 * (1.0 + std::abs(here)))
+          fail("the fronts of a light piece are out of the order they run in");
+      }
+    }
+  }
+  if (fronts != live_fronts_)
+    fail(std::to_string(fronts) + " fronts on the lists and queues, " + std::to_string(live_fronts_) + " counted live");
+  for (const double book : {error_defects_, error_fans_, error_lost_, error_merges_, error_droplets_, error_scattered_})
+    if (!non_negative(book)) fail("an error book reads " + number(book));
+}
+
+}  // namespace characteristics
+}  // namespace rigidity
