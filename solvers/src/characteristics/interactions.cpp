@@ -618,14 +618,18 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     fastest_in = std::max(fastest_in, std::abs(label_speed));
     ++fronts_in;
     account_front_end(id, t);
-    if (n.front_kind == FrontKind::rarefaction) {
-      ++steps_in[f];
-      steps_born[f] = n.born;
-      steps_error[f] += fan_error(id, t);
-    }
     if (n.front_kind == FrontKind::rarefaction || n.smooth) {
-      steps_staircase[f] += fan_error(id, t, false);
-      if (n.front_kind != FrontKind::rarefaction) steps_taken[f] += fan_error(id, t);
+      // The staircase's error, and the least of it and the reconstruction's (fan_error).
+      const double staircase = fan_error(id, t, false);
+      const double reconstructed = std::min(staircase, reconstruction_error(id, t));
+      steps_staircase[f] += staircase;
+      if (n.front_kind == FrontKind::rarefaction) {
+        ++steps_in[f];
+        steps_born[f] = n.born;
+        steps_error[f] += reconstructed;
+      } else {
+        steps_taken[f] += reconstructed;
+      }
     }
     if (!n.smooth) {
       jump_speed[f] = n.dXdt;
