@@ -34,7 +34,7 @@ double Tracker::merge_cost(int p, int q, double t, double* X_merged) const {
   if (lL == lR) return kInf;
   const double Xp = np.X_at(t), Xq = nq.X_at(t), d = Xq - Xp;
   const double X = Xp + d * (lM - lR) / (lL - lR);
-  const double lower = nodes_[np.prev].X_at(t), upper = nodes_[nq.next].X_at(t);
+  const double lower = facing(np.prev, true).X_at(t), upper = facing(nq.next, false).X_at(t);
   const double margin = 64.0 * kEps * (1.0 + std::abs(X));
   if (!(X > lower + margin && X < upper - margin)) return kInf;
   if (X_merged != nullptr) *X_merged = X;
@@ -57,6 +57,7 @@ int Tracker::merge_neighbours(int id, double t) {
       const Node& np = nodes_[p];
       const Node& nq = nodes_[q];
       if (np.kind != NodeKind::front || nq.kind != NodeKind::front || np.family != nq.family) continue;
+      if (unsplit(p) || unsplit(q)) continue;  // a fan's wedge is no jump to move
       const Region& L = nodes_[np.prev].right;
       if (L.material != np.right.material || L.material != nq.right.material) continue;
       if (std::min(np.strength, nq.strength) * (nq.X_at(t) - np.X_at(t)) > best_cost) continue;
@@ -327,6 +328,7 @@ void Tracker::merge_nearby(int id, double t) {
 }
 
 double Tracker::fan_error(int id, double t, bool smooth_on) const {
+  if (unsplit(id)) return 0.0;  // samples take the exact fan
   const Node& n = nodes_[id];
   const Region& left = nodes_[n.prev].right;
   const Region& right = n.right;

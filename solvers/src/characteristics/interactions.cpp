@@ -16,11 +16,12 @@ double Tracker::meeting_time(int a) const {
   const Node& na = nodes_[a];
   const int b = na.next;
   if (b == kNone || na.kind == NodeKind::light_store) return kInf;  // a light piece's store meets nothing
-  const Node& nb = nodes_[b];
-  const double closing = na.dXdt - nb.dXdt;
+  // An unsplit fan is met at its edge: a's fastest characteristic, b's slowest.
+  const LabelRay ra = facing(a, true), rb = facing(b, false);
+  const double closing = ra.speed - rb.speed;
   if (!(closing > 0.0)) return kInf;
-  const double t_ref = std::max(na.t0, nb.t0);
-  const double gap = std::max(0.0, nb.X_at(t_ref) - na.X_at(t_ref));
+  const double t_ref = std::max(ra.t0, rb.t0);
+  const double gap = std::max(0.0, rb.X_at(t_ref) - ra.X_at(t_ref));
   const double t = t_ref + gap / closing;
   return t <= scene_.t_end ? t : kInf;
 }
@@ -389,6 +390,8 @@ void Tracker::resolve(int seed_left, int seed_right, double t) {
 void Tracker::wave(const Material& m, const State& outer, const State& star, int family, bool fresh, WaveStates& w) {
   w.states.clear();
   w.shock = false;
+  w.unsplit = 0;
+  w.capped = false;
   w.states.push_back(outer);
   if (same_state(outer, star)) return;
   if (m.linearly_degenerate()) {
@@ -413,8 +416,22 @@ void Tracker::wave(const Material& m, const State& outer, const State& star, int
   const double by_speed = std::ceil(std::abs(speed_star - speed_outer) /
                                     (kMaxSpeedStep * std::max(std::abs(speed_outer), std::abs(speed_star))));
   const double wanted = fresh ? std::max({std::floor(span / fan_step_), least, by_speed}) : 1.0;
-  if (wanted > kMaxFanSteps) fan_capped_ = true;
   const int steps = std::max(1, static_cast<int>(std::min(wanted, static_cast<double>(kMaxFanSteps))));
+  if (fresh && steps > 1) {
+    // A new centred fan, held as one front until something reaches it (split_fan).
+    w.unsplit = steps;
+    w.capped = wanted > kMaxFanSteps;
+    w.states.push_back(star);
+    return;
+  }
+  fan_states(m, outer, star, family, steps, w);
+}
+
+void Tracker::fan_states(const Material& m, const State& outer, const State& star, int family, int steps,
+                         WaveStates& w) {
+  w.states.clear();
+  w.states.push_back(outer);
+  const double psi_outer = m.riemann_psi(outer.stretch), psi_star = m.riemann_psi(star.stretch);
   // J carried across: J+ = φ + Ψ for a C− fan, J− = φ − Ψ for a C+ fan.
   const double invariant = family < 0 ? outer.rapidity + psi_outer : outer.rapidity - psi_outer;
   for (int k = 1; k < steps; ++k) {
@@ -424,7 +441,6 @@ void Tracker::wave(const Material& m, const State& outer, const State& star, int
     w.states.push_back(State{family < 0 ? invariant - psi : invariant + psi, s.value});
   }
   w.states.push_back(star);
-  return;
 }
 
 void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, int piece, double t, double X, double x,
@@ -494,6 +510,8 @@ void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, in
     f.speed_a = characteristic_speeds(m, outer, family).lagrangian;
     f.speed_b = characteristic_speeds(m, star, family).lagrangian;
     f.steps = static_cast<int>(out.size());
+    f.unsplit = w.unsplit;
+    f.capped = w.capped;
     for (int step : out) nodes_[step].fan = id;
   }
   if (live_fronts_ > scene_.solver.max_fronts) {

@@ -78,38 +78,21 @@ void Tracker::region_at(int n, double X, double t, Region& region, double& x) co
     region = Region{region.material, in_fan};
     return;
   }
-  x = node.x_at(t) + (X - node.X_at(t)) * label_density(region.state);
+  if (unsplit(n)) {
+    // Right of an unsplit fan's wedge: the region starts at the fan's fastest characteristic.
+    const CentredFan& f = fans_[node.fan];
+    const double speed = std::max(f.speed_a, f.speed_b);
+    const double x_edge = f.x0 + characteristic_speeds(*region.material, region.state, f.family).lab * (t - f.t0);
+    x = x_edge + (X - (f.X0 + speed * (t - f.t0))) * label_density(region.state);
+  } else {
+    x = node.x_at(t) + (X - node.X_at(t)) * label_density(region.state);
+  }
   State smooth;
   double dx = 0.0;
   if (reconstruct(n, X, t, smooth, dx)) {
     region = Region{region.material, smooth};
     x += dx;
   }
-}
-
-bool Tracker::fan_sample(int n, double X, double t, State& state, double& x) const {
-  for (const int id : {n, nodes_[n].next}) {
-    if (id == kNone || nodes_[id].kind != NodeKind::front || nodes_[id].fan == kNone) continue;
-    const CentredFan& f = fans_[nodes_[id].fan];
-    if (!(t > f.t0)) return false;
-    const double speed = (X - f.X0) / (t - f.t0);
-    const double slowest = std::min(f.speed_a, f.speed_b), fastest = std::max(f.speed_a, f.speed_b);
-    if (!(speed > slowest && speed < fastest)) continue;
-    // The region's other edge is a step of the same fan, or lies beyond the fan: a wave that
-    // has entered the fan's wedge without meeting a step yet has changed the state behind it.
-    const int other = id == n ? nodes_[n].next : n;
-    if (other == kNone || nodes_[other].fan != nodes_[id].fan) {
-      const double edge = other == kNone ? (id == n ? kInf : -kInf) : (nodes_[other].X_at(t) - f.X0) / (t - f.t0);
-      if (id == n ? edge < fastest : edge > slowest) return false;
-    }
-    const Solved<State> exact = centred_fan_state(*f.material, f.family, f.j_other, f.psi_a, f.psi_b, speed);
-    if (!exact.ok()) return false;  // the steps' state, then
-    state = exact.value;
-    // Every characteristic of the fan is a straight line from its centre in the lab as well.
-    x = f.x0 + characteristic_speeds(*f.material, state, f.family).lab * (t - f.t0);
-    return true;
-  }
-  return false;
 }
 
 double Tracker::quantity(Quantity q, const Region& r, double X, double x) const {
@@ -197,11 +180,15 @@ void Tracker::totals(double t, double& energy, double& momentum) const {
       });
       continue;
     }
+    const auto add = [&](double dX, const Material& m, const State& state) {
+      energy += dX * energy_density(m, state);
+      momentum += dX * momentum_density(m, state);
+    };
     for (int n = piece.left_end; nodes_[n].kind != NodeKind::right_end; n = nodes_[n].next) {
-      const Node& node = nodes_[n];
-      const double dX = nodes_[node.next].X_at(t) - node.X_at(t);
-      energy += dX * energy_density(*node.right.material, node.right.state);
-      momentum += dX * momentum_density(*node.right.material, node.right.state);
+      if (unsplit(n)) fan_wedge(n, t, add);
+      double Xa = 0.0, Xb = 0.0;
+      region_span(n, t, Xa, Xb);
+      add(Xb - Xa, *nodes_[n].right.material, nodes_[n].right.state);
     }
   }
 }

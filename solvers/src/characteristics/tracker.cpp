@@ -177,7 +177,9 @@ RunResult Tracker::run() {
       // A crossing done in place reschedules (or removes) the meeting it was, which moves
       // the entry down from the top once instead of removing it and inserting another.
       const MeetingQueue::Entry m = meetings_.top();
-      if (interact_in_place(m.node, nodes_[m.node].next, m.t)) {
+      if (split_reached_fan(m.node, m.t)) {
+        // A fan's edge was reached: its steps take its place, and the meetings they make go on.
+      } else if (interact_in_place(m.node, nodes_[m.node].next, m.t)) {
         if (!meetings_.empty() && meetings_.top().node == m.node && meetings_.top().seq == m.seq)
           meetings_.erase(m.node);
       } else {
@@ -196,7 +198,11 @@ RunResult Tracker::run() {
     Node& n = nodes_[id];
     if (!n.alive || n.kind == NodeKind::light_store) continue;
     if (n.kind == NodeKind::front) account_front_end(static_cast<int>(id), t_end);
-    record_segment(n, t_end);
+    if (unsplit(static_cast<int>(id))) {
+      record_fan_edges(static_cast<int>(id), t_end);
+    } else {
+      record_segment(n, t_end);
+    }
   }
   for (std::size_t piece = 0; piece < light_.size(); ++piece) {
     if (!is_light(static_cast<int>(piece))) continue;
@@ -334,8 +340,10 @@ RunResult Tracker::run() {
                    [&](double, double, double X_a, double X_b, const State& state, bool) { add(X_b - X_a, m, state); });
       } else {
         for (int n = piece.left_end; nodes_[n].kind != NodeKind::right_end; n = nodes_[n].next) {
-          const Node& node = nodes_[n];
-          add(nodes_[node.next].X_at(t_end) - node.X_at(t_end), *node.right.material, node.right.state);
+          if (unsplit(n)) fan_wedge(n, t_end, add);
+          double Xa = 0.0, Xb = 0.0;
+          region_span(n, t_end, Xa, Xb);
+          add(Xb - Xa, *nodes_[n].right.material, nodes_[n].right.state);
         }
       }
       r.velocity_mean = mass > 0.0 ? mass_velocity / mass : 0.0;

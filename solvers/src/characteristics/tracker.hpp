@@ -10,6 +10,7 @@
 //   light.cpp         pieces whose sound travels at light speed, crossings not visited
 //   lattice.cpp       pieces of any other linearly degenerate material, the same
 //   reconstruction.cpp  smooth waves sampled between their steps, and the error of doing so
+//   fans.cpp          centred fans: one front until reached, then split; their exact samples
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -24,6 +25,7 @@
 #include "front_math.hpp"
 #include "meeting_queue.hpp"
 #include "memo.hpp"
+#include "rigidity/errors.hpp"
 #include "rigidity/run_recorder.hpp"
 #include "rigidity/run_result.hpp"
 #include "rigidity/scene.hpp"
@@ -132,6 +134,11 @@ enum class Attach : std::uint8_t { free, boundary, body };
 /// them the solution is the exact self-similar fan (the state whose characteristic of the
 /// fan's family runs from the centre to the sample), which samples take in place of the
 /// steps' states. A step that interacts, or is re-anchored, leaves it.
+///
+/// A fan is born unsplit: one front between its outer and star states stands for the whole
+/// wedge, samples and totals take the exact fan, and neighbours meet it at its edges. Only
+/// when something reaches an edge is it split into its steps (Tracker::split_fan), each on
+/// the line it would have had from the centre, so a fan nothing crosses costs nothing.
 struct CentredFan {
   double t0 = 0.0, X0 = 0.0, x0 = 0.0;  ///< the centre
   int family = 0;
@@ -140,6 +147,14 @@ struct CentredFan {
   double psi_a = 0.0, psi_b = 0.0;      ///< Ψ at its outer edge and at its star edge
   double speed_a = 0.0, speed_b = 0.0;  ///< the family's label speeds there
   int steps = 0;                        ///< steps still on their lines (0: a free slot)
+  int unsplit = 0;                      ///< the steps the one front of an unsplit fan splits into; 0 once split
+  bool capped = false;                  ///< that count was cut to kMaxFanSteps
+};
+
+/// A straight line in label space: X = X0 + speed (t − t0).
+struct LabelRay {
+  double t0 = 0.0, X0 = 0.0, speed = 0.0;
+  [[nodiscard]] double X_at(double t) const { return X0 + speed * (t - t0); }
 };
 
 /// A state of a material between two nodes, with what crossings ask of it remembered:
@@ -339,6 +354,8 @@ struct SmoothIn {
 struct WaveStates {
   std::vector<State> states;  ///< outer state first, star state last
   bool shock = false;
+  int unsplit = 0;      ///< a new fan held as one front: the steps it splits into (states: outer, star)
+  bool capped = false;  ///< that count was cut to kMaxFanSteps
 };
 
 class Tracker {
@@ -469,6 +486,9 @@ class Tracker {
   /// no step of a smooth wave came in) in steps of fan_step_ in Ψ, and in at least
   /// kMinFanSteps where steps of 2 × the resolution would make as many; a step going on, one.
   void wave(const Material& m, const State& outer, const State& star, int family, bool fresh, WaveStates& w);
+  /// The states of a fan from `outer` to `star` in `steps` equal steps of Ψ (w.states).
+  static void fan_states(const Material& m, const State& outer, const State& star, int family, int steps,
+                         WaveStates& w);
   void emit_fronts(const Material& m, const WaveStates& w, int family, int piece, double t, double X, double x,
                    std::vector<int>& out);
   void reanchor(int id, double t);
@@ -594,6 +614,41 @@ class Tracker {
     if (--fans_[n.fan].steps == 0) free_fans_.push_back(n.fan);
     n.fan = kNone;
   }
+  // ---- centred fans (fans.cpp) -----------------------------------------------------------
+  /// The one front of a fan not split yet (CentredFan::unsplit).
+  [[nodiscard]] bool unsplit(int id) const {
+    const Node& n = nodes_[id];
+    return n.kind == NodeKind::front && n.fan != kNone && fans_[n.fan].unsplit > 0;
+  }
+  /// An unsplit fan's edge: its fastest characteristic (`fast`, the edge its right region
+  /// touches) or its slowest, a ray from the centre.
+  [[nodiscard]] LabelRay fan_edge(int id, bool fast) const {
+    const CentredFan& f = fans_[nodes_[id].fan];
+    return LabelRay{f.t0, f.X0, fast ? std::max(f.speed_a, f.speed_b) : std::min(f.speed_a, f.speed_b)};
+  }
+  /// The line a neighbour meets: an unsplit fan's edge on that side, else the node's own.
+  [[nodiscard]] LabelRay facing(int id, bool fast) const {
+    const Node& n = nodes_[id];
+    return unsplit(id) ? fan_edge(id, fast) : LabelRay{n.t0, n.X0, n.dXdt};
+  }
+  /// The labels [Xa, Xb] at time t of the constant region right of node n (to an unsplit
+  /// fan's edge where n or its right neighbour is one).
+  void region_span(int n, double t, double& Xa, double& Xb) const {
+    Xa = facing(n, true).X_at(t);
+    Xb = facing(nodes_[n].next, false).X_at(t);
+  }
+  /// Replaces the one front of an unsplit fan by its steps, each on its line from the
+  /// centre, as if the fan had been emitted split; reschedules their meetings.
+  void split_fan(int id, double t);
+  /// Splits the unsplit fans a meeting of node a with its right neighbour at t is with
+  /// (the meeting is then the fan's edge reached); whether there were any.
+  bool split_reached_fan(int a, double t);
+  /// Calls add(dX, material, state) over the wedge of unsplit fan `id` at time t: Gauss–
+  /// Legendre nodes of the exact fan, dX their weights (the integrals of totals and sums).
+  template <class Add>
+  void fan_wedge(int id, double t, Add&& add) const;
+  /// Records an unsplit fan's two edges in fronts.csv, up to t.
+  void record_fan_edges(int id, double t);
   /// Where label X at time t lies in the region right of node n and in the centred fan of n
   /// or of its right neighbour: the exact state there and its lab position.
   bool fan_sample(int n, double X, double t, State& state, double& x) const;
@@ -604,7 +659,7 @@ class Tracker {
   /// A front that is a step of a smooth wave of `family`.
   [[nodiscard]] bool is_step(int id, int family) const {
     const Node& n = nodes_[id];
-    return n.kind == NodeKind::front && n.smooth && n.family == family;
+    return n.kind == NodeKind::front && n.smooth && n.family == family && !unsplit(id);
   }
   /// Walking from node `from` towards `step` (&Node::prev or &Node::next) past smooth steps of
   /// the other family: the first node that is a front of `family`, or anything that bounds
@@ -807,9 +862,29 @@ class Tracker {
   bool emit_smooth_ = false;
 
   // scratch buffers reused by every interaction
-  std::vector<int> group_, emitted_left_, emitted_right_, touched_;
-  WaveStates wave_left_, wave_right_;
+  std::vector<int> group_, emitted_left_, emitted_right_, emitted_split_, touched_;
+  WaveStates wave_left_, wave_right_, wave_split_;
 };
+
+/// Gauss–Legendre nodes and weights on [0, 1] for the integrals over a fan's wedge.
+struct QuadraturePoint {
+  double at = 0.0, weight = 0.0;
+};
+[[nodiscard]] const std::vector<QuadraturePoint>& fan_quadrature();
+
+template <class Add>
+void Tracker::fan_wedge(int id, double t, Add&& add) const {
+  const Node& n = nodes_[id];
+  const CentredFan& f = fans_[n.fan];
+  const double lo = std::min(f.speed_a, f.speed_b), hi = std::max(f.speed_a, f.speed_b), dt = t - f.t0;
+  if (!(dt > 0.0)) return;
+  for (const QuadraturePoint& q : fan_quadrature()) {
+    const double speed = lo + (hi - lo) * q.at;
+    const Solved<State> s = centred_fan_state(*f.material, f.family, f.j_other, f.psi_a, f.psi_b, speed);
+    if (!s.ok()) throw NumericalError("a rarefaction fan state could not be found (label speed " + number(speed) + ")");
+    add((hi - lo) * q.weight * dt, *f.material, s.value);
+  }
+}
 
 template <class Visit>
 void Tracker::walk_lattice_fronts(int piece, double t, Visit&& visit) const {

@@ -45,7 +45,8 @@ void Tracker::validate(double t) const {
       const int next = node.next;
       if (next == kNone || nodes_[next].prev != n)
         fail("nodes " + std::to_string(n) + " and " + std::to_string(next) + " are not linked both ways");
-      const double X = node.X_at(t), X_next = nodes_[next].X_at(t);
+      // (An unsplit fan's neighbours stay outside its wedge: they are split before entering.)
+      const double X = facing(n, true).X_at(t), X_next = facing(next, false).X_at(t);
       if (node.kind != NodeKind::light_store && nodes_[next].kind != NodeKind::light_store &&
           X_next < X - 1e-9 * (1.0 + std::abs(X)))
         fail("node " + std::to_string(next) + " at label " + number(X_next) + " is left of node " + std::to_string(n) +
