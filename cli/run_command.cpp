@@ -14,6 +14,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "rigidity/cli.hpp"
 #include "rigidity/errors.hpp"
@@ -79,6 +80,54 @@ std::string join(const std::vector<std::string>& items, std::string_view separat
   return out;
 }
 
+/// `value` with the fewest significant digits (at least `digits`) that print it above
+/// `limit` as `limit` prints, so that a number said to be above another never reads as
+/// equal to it.
+std::string number_above(double value, double limit, int digits = 3) {
+  const std::string limit_text = number(limit);
+  for (int d = digits; d <= 17; ++d) {
+    const std::string text = number(value, d);
+    if (std::stod(text) > std::stod(limit_text)) return text;
+  }
+  return number(value, 17);
+}
+
+/// The terminal's account of the solver: what it was asked (tolerance, or cells and
+/// order), what it guarantees (the error bound) and what it cost. Every other number the
+/// solver reports (the bound's parts, thresholds, counts) is in summary.json's `solver`.
+std::string solver_line(const RunResult& result) {
+  const std::string method = result.solver.empty() ? std::string("?") : result.solver;
+  std::vector<std::string> asked;
+  const double tolerance = result.solver_number("tolerance");
+  const double bound = result.solver_number("error_bound");
+  const double resolution = result.solver_number("resolution");
+  const double cells = result.solver_number("cells");
+  const double order = result.solver_number("order");
+  if (!std::isnan(tolerance)) asked.push_back("tolerance " + number(tolerance, 6));
+  if (!std::isnan(resolution)) asked.push_back("resolved at " + number(resolution, 3));
+  if (!std::isnan(bound))
+    asked.push_back("error bound " +
+                    (!std::isnan(tolerance) && bound > tolerance ? number_above(bound, tolerance) : number(bound, 3)));
+  if (!std::isnan(cells)) asked.push_back(number(cells, 10) + " cells per body");
+  if (!std::isnan(order)) asked.push_back("order " + number(order, 1));
+
+  std::vector<std::string> cost;
+  const double steps = result.solver_number("steps");
+  if (!std::isnan(steps)) {
+    cost.push_back(number(steps, 15) + " steps");
+  } else {
+    cost.push_back(std::to_string(result.stats.fronts) + " fronts");
+    cost.push_back(std::to_string(result.stats.interactions) + " interactions");
+    if (result.stats.crossings_unvisited > 0)
+      cost.push_back(std::to_string(result.stats.crossings_unvisited) + " crossings known without a visit");
+  }
+  std::string line = "solver: " + method + (asked.empty() ? "" : " (" + join(asked, ", ") + ")") + "; " +
+                     join(cost, ", ") + ", solved in " + number(result.stats.wall_time_s, 3) + " s";
+  if (result.stats.sampling_time_s >= 0.001)
+    line += " (outputs sampled in " + number(result.stats.sampling_time_s, 3) + " s)";
+  return line;
+}
+
 /// Events the terminal summary lists one by one (summary.json has more, events.csv all).
 constexpr std::size_t kEventsShown = 20;
 
@@ -93,19 +142,7 @@ void print_summary(std::ostream& out, const Scene& scene, const RunResult& resul
         << " of t_end = " << units(scene.t_end, Dimension::time) << " " << time_unit << "\n";
   }
 
-  std::vector<std::string> numbers;
-  for (const auto& [name, value] : result.solver_numbers) numbers.push_back(name + " " + number(value, 6));
-  const std::string method = result.solver.empty() ? std::string("?") : result.solver;
-  out << "solver: " << method << (numbers.empty() ? "" : " (" + join(numbers, ", ") + ")") << "; "
-      << result.stats.fronts << " fronts, " << result.stats.interactions << " interactions, "
-      << (result.stats.crossings_unvisited > 0
-              ? std::to_string(result.stats.crossings_unvisited) + " crossings known without a visit, "
-              : "")
-      << "solved in " << number(result.stats.wall_time_s, 3) << " s"
-      << (result.stats.sampling_time_s >= 0.001
-              ? " (outputs sampled in " + number(result.stats.sampling_time_s, 3) + " s)"
-              : "")
-      << "\n";
+  out << solver_line(result) << "\n";
 
   long total_events = 0;
   std::vector<std::string> counts;

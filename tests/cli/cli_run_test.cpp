@@ -114,6 +114,63 @@ TEST_F(CliTest, RunWithoutASceneRunsThePaperWallImpact) {
   EXPECT_TRUE(contains(r.out, "relative difference"));
   EXPECT_TRUE(contains(r.out, "rebound velocity"));
   EXPECT_FALSE(contains(r.out, "no separation"));
+  // The solver's line: what it was asked, its bound and its cost; the bound's parts and
+  // the thresholds are in summary.json.
+  EXPECT_TRUE(contains(r.out,
+                       "solver: characteristics (tolerance 1e-12, error bound 0); 2 fronts, 4 interactions, "
+                       "solved in "))
+      << r.out;
+  EXPECT_FALSE(contains(r.out, "weak_wave_threshold"));
+  EXPECT_EQ(summary["solver"]["error_bound"].number, 0.0);
+  EXPECT_EQ(summary["solver"]["fronts_alive_max"].number, 1.0);
+}
+
+// Three bars after a short push of a piston; at tolerance 1e-2 to t = 9.27 the merges book
+// an error bound of about 0.01007 (tests/solvers/bounded_tracking_test.cpp).
+const std::string kThreeBarsScene =
+    "name: three_bars\n"
+    "materials:\n"
+    "  light: {model: rigid, rest_density: 0.5}\n"
+    "  heavy: {model: rigid, rest_density: 2.5}\n"
+    "  soft: {model: hooke, wave_speed: 0.7, rest_density: 1.3}\n"
+    "bodies:\n"
+    "  - {name: a, material: light, position: 0.0, length: 0.8, velocity: 0.0}\n"
+    "  - {name: b, material: heavy, position: 0.8, length: 0.6, velocity: 0.0}\n"
+    "  - {name: c, material: soft, position: 1.4, length: 1.0, velocity: 0.0}\n"
+    "boundaries:\n"
+    "  left: {type: piston, table: [[0.0, 0.2], [0.5, 0.0]]}\n"
+    "  right: {type: wall, bonded: true}\n"
+    "solver: {method: characteristics, tolerance: 0.01}\n"
+    "time: {end: 9.27}\n";
+
+TEST_F(CliTest, RunShowsABoundJustAboveTheToleranceAboveIt) {
+  const std::string scene = write_file("three_bars.yaml", kThreeBarsScene);
+  const CliOutcome r = rigidity("run " + scene + " --out run");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const mini_json::Value summary = mini_json::parse(read_text(dir() / "run" / "summary.json"));
+  const double bound = summary["solver"]["error_bound"].number;
+  ASSERT_GT(bound, 0.01);
+  ASSERT_LT(bound, 0.0105);  // two significant digits would print it as 0.01
+  std::smatch line;
+  ASSERT_TRUE(std::regex_search(
+      r.out, line,
+      std::regex(
+          R"(solver: characteristics \(tolerance 0\.01, error bound ([0-9.e+-]+)\); [0-9]+ fronts, [0-9]+ interactions, )")))
+      << r.out;
+  EXPECT_GT(std::stod(line[1].str()), 0.01) << line[0];
+  std::smatch warning;
+  ASSERT_TRUE(std::regex_search(r.err, warning,
+                                std::regex(R"(the error bound ([0-9.e+-]+) is above solver\.tolerance = 0\.01:)")))
+      << r.err;
+  EXPECT_GT(std::stod(warning[1].str()), 0.01) << warning[0];
+}
+
+TEST_F(CliTest, RunOfFiniteVolumeShowsItsCellsOrderAndSteps) {
+  const CliOutcome r = rigidity("run --out fv --set solver.method=finite_volume --set solver.cells=40");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_TRUE(std::regex_search(
+      r.out, std::regex(R"(solver: finite_volume \(40 cells per body, order 2\); [0-9]+ steps, solved in )")))
+      << r.out;
 }
 
 TEST_F(CliTest, RunWritesWhereToldAndAppliesOverrides) {

@@ -138,6 +138,9 @@ TEST_F(CliTest, PlotHasHelp) {
   const CliOutcome r = rigidity("plot --help");
   EXPECT_EQ(r.exit_status, 0);
   EXPECT_TRUE(contains(r.out, "usage: rigidity plot RUN_DIR"));
+  // Every image it draws.
+  for (const char* image : {"xt.png", "probes.png", "snapshots.png", "snapshots_lab.png", "animation.gif"})
+    EXPECT_TRUE(contains(r.out, image)) << image;
   EXPECT_TRUE(contains(rigidity("--help").out, "rigidity plot"));
 }
 

@@ -254,6 +254,30 @@ TEST(ErrorBound, ABoundAboveTheToleranceSaysWhatHoldsItUp) {
   EXPECT_EQ(said(quiet.result), "");
 }
 
+TEST(ErrorBound, ABoundJustAboveTheToleranceIsPrintedAboveIt) {
+  // The three bars after a short push, at tolerance 1e-2 to t = 9.27: the merges book a
+  // bound of about 0.01007, which two significant digits print as the tolerance itself.
+  // The warning prints it with the digits that show it above the tolerance as printed:
+  // never "the error bound 0.01 is above solver.tolerance = 0.01".
+  std::string yaml = kThreeBars;
+  yaml.replace(yaml.find("{type: piston, velocity: 0.2}"), 29, "{type: piston, table: [[0.0, 0.2], [0.5, 0.0]]}");
+  const SceneRun r = run(yaml, 1e-2, 9.27);
+  const double bound = solver_number(r.result, "error_bound");
+  ASSERT_GT(bound, 1e-2);
+  ASSERT_LT(bound, 1.05e-2);  // the case two digits would print as 0.01
+  std::string warning;
+  for (const std::string& w : r.result.warnings)
+    if (w.find("is above solver.tolerance") != std::string::npos) warning = w;
+  const std::string bound_text = "the error bound ", tolerance_text = "solver.tolerance = ";
+  ASSERT_EQ(warning.rfind(bound_text, 0), 0u) << warning;
+  const std::size_t at = warning.find(tolerance_text);
+  ASSERT_NE(at, std::string::npos) << warning;
+  const double printed_bound = std::stod(warning.substr(bound_text.size()));
+  const double printed_tolerance = std::stod(warning.substr(at + tolerance_text.size()));
+  EXPECT_EQ(printed_tolerance, 1e-2) << warning;
+  EXPECT_GT(printed_bound, printed_tolerance) << warning;
+}
+
 TEST(ErrorBound, FanStepsFollowTheRootOfTheTolerance) {
   // Reconstructed between its steps, a fan is off by the square of their width: steps of
   // 0.7 √tolerance in Ψ, no wider than 0.02.

@@ -262,13 +262,25 @@ RunResult Tracker::run() {
     os << v;
     return os.str();
   };
+  // A number said to be above the tolerance, with the digits (two at least) that print
+  // it above the tolerance as printed: never "0.001 is above solver.tolerance = 0.001".
+  const auto above_tolerance = [&](double v) {
+    const double printed_tolerance = std::stod(number(scene_.solver.tolerance));
+    for (int digits = 2; digits <= 17; ++digits) {
+      std::ostringstream os;
+      os.precision(digits);
+      os << v;
+      if (std::stod(os.str()) > printed_tolerance) return os.str();
+    }
+    return number(v);
+  };
   const bool spray_coarsened = coarsest_resolution_ > scene_.solver.tolerance;
   if (spray_coarsened) {
-    result_.warnings.push_back("the droplets of a spray booked " +
-                               two_digits(kStability * error_droplets_ / total_length_) +
-                               " of the error bound, which no tolerance reduces: while they dominated, waves and "
-                               "droplets were resolved more coarsely than solver.tolerance = " +
-                               number(scene_.solver.tolerance) + ", at most to " + two_digits(coarsest_resolution_));
+    result_.warnings.push_back(
+        "the droplets of a spray booked " + two_digits(kStability * error_droplets_ / total_length_) +
+        " of the error bound, which no tolerance reduces: while they dominated, waves and "
+        "droplets were resolved more coarsely than solver.tolerance = " +
+        number(scene_.solver.tolerance) + ", at most to " + above_tolerance(coarsest_resolution_));
   }
   // A bound above the tolerance asked for: say which part holds it up and what would lower it.
   if (scene_.solver.tolerance_given && error_bound > scene_.solver.tolerance &&
@@ -297,7 +309,7 @@ RunResult Tracker::run() {
                                           two_digits(kStability * (carried + error_fans_alive) / total_length_) +
                                           " as the waves carried it through interfaces, contacts and ends)"
                                     : "";
-      result_.warnings.push_back("the error bound " + two_digits(error_bound) +
+      result_.warnings.push_back("the error bound " + above_tolerance(error_bound) +
                                  " is above solver.tolerance = " + number(scene_.solver.tolerance) + ": most of it (" +
                                  two_digits(kStability * parts[largest] / total_length_) + ") booked by " +
                                  kWhy[largest] + grown + "; " + kLower[largest] + ", a shorter time.end in proportion");
