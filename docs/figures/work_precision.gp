@@ -27,7 +27,7 @@ shown(e) = e > floor ? e : floor
 pick(scene, solver, order, flux, value) = \
   (strcol(1) eq scene && strcol(2) eq solver && strcol(3) eq order && strcol(4) eq flux) ? value : NaN
 # Characteristics tolerances down to 1e-10 are joined; 1e-11 and 1e-12 are drawn apart
-# (on the shock tube they came out far off the curve: see the README).
+# (on the shock tube they can fall far off the curve: see docs/benchmarks.md).
 coarse(scene, value) = column(5) > 5e-11 ? pick(scene, 'characteristics', '-', '-', value) : NaN
 fine(scene, value) = column(5) < 5e-11 ? pick(scene, 'characteristics', '-', '-', value) : NaN
 
