@@ -81,8 +81,8 @@ void run_scene(benchmark::State& state, const std::string& yaml) {
   state.SetItemsProcessed(updates);
 }
 
-/// Two rigid_fluid bars meeting at ±0.6c (the plateau of README "The finite-volume
-/// plateau"): most cells sit in uniform states ahead of the two shocks, and a cell whose
+/// Two rigid_fluid bars meeting at ±0.6c (the plateau of docs/limits.md, "The
+/// finite-volume plateau"): most cells sit in uniform states ahead of the two shocks, and a cell whose
 /// U a step leaves unchanged keeps its state without a recovery.
 void BM_FiniteVolumeCollision(benchmark::State& state) {
   run_scene(state, R"(

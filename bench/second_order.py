@@ -17,7 +17,7 @@ bound's norm), on 4001 samples per body, against a front-tracking run at toleran
 
   bench/second_order.py [--rigidity build/rigidity] [--out docs] [--quick]
 
-Writes second_order.csv and second_order.md into --out; the README's table is second_order.md.
+Writes second_order.csv and second_order.md into --out; docs/benchmarks.md includes second_order.md.
 """
 import argparse
 import csv

@@ -3,7 +3,7 @@
 # Writes work_precision.csv, work_precision.md (the tables, also printed) and
 # work_precision.png into the build directory ($BUILD_DIR/work_precision), or into
 # docs/ (docs/figures/ for the figure) with --update-docs, which rewrites the tracked
-# files the README shows. A few minutes on 2 cores.
+# files docs/benchmarks.md shows. A few minutes on 2 cores.
 # Other arguments go to the driver: --quick (fewer resolutions), --out DIR, --benchmark_* flags.
 # BUILD_DIR (default build-wp) is the build directory; in CI (CI=true) warnings are errors.
 set -euo pipefail

@@ -419,7 +419,7 @@ TEST(FiniteVolumeContact, RigidFluidCollisionPlateauTrailsAsTheShockSpreads) {
   // linearly degenerate, so the scheme smears it like a contact (width ∝ N^−2/3 at order
   // 2) and the averages inside it, taken in (s/γ, momentum), lie off its wave curve: the
   // plateau behind trails the exact one by an error that falls as N^−2/3, not N^−1
-  // (README, "The finite-volume plateau"). Exact: at the contact v = 0 and, with the rigid
+  // (docs/limits.md, "The finite-volume plateau"). Exact: at the contact v = 0 and, with the rigid
   // law, s = e^−artanh 0.6 = 1/2, p = ρ00 v/(1 − v) = 1.5.
   const double v = 0.6, exact_p = v / (1.0 - v);
   const exact::Solution<double> riemann = exact::riemann_problem<double>(exact::rigid(1.0), {std::atanh(v), 1.0},

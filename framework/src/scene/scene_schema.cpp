@@ -246,7 +246,7 @@ Key solver_key() {
           Key::choice("method", {"characteristics", "finite_volume"}, "front tracking, or a finite-volume scheme")
               .defaults_to(std::string("characteristics")),
           Key::number("tolerance",
-                      "characteristics: the error the run may make (README, What the tolerance means); "
+                      "characteristics: the error the run may make (docs/solvers.md, What the tolerance means); "
                       "by default exact where waves are jumps, and fans as fine as 100000 steps allow")
               .above(0.0)
               .defaults_to(1.0e-12),

@@ -686,7 +686,7 @@ class Tracker {
   /// invariant on the line through the steps' values (the edges of waves stay as they are).
   /// Lattice pieces are sampled as their staircases. Returns false where nothing changes.
   bool light_reconstruct(int piece, double x, double t, State& state) const;
-  // ---- the error budget (see README "What the tolerance means") --------------------
+  // ---- the error budget (see docs/solvers.md, "What the tolerance means") --------------------
   double weak_ = 0.0;                   ///< strength |ΔJ| below which an interface or contact emits no wave
   double weak_merging_ = 0.0;           ///< strength below which two fronts of one family merging emit no reflection
   double star_mismatch_ = 0.0;          ///< kStarMismatch × tolerance²

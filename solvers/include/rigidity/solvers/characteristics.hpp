@@ -12,7 +12,7 @@
 /// as the lines through the steps' values. solver.tolerance also bounds the
 /// work: waves weaker than it allows are held back at contacts, neighbouring fronts
 /// merge, and the live fronts are capped; the run reports the L1 error bound this
-/// costs (solver.error_bound, README "What the tolerance means").
+/// costs (solver.error_bound, docs/solvers.md, "What the tolerance means").
 
 #include "rigidity/run_recorder.hpp"
 #include "rigidity/run_result.hpp"
