@@ -835,6 +835,11 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     split_piece(left_of_crack, right_of_crack, sol.left, sol.right, Region{}, right_first, t, XL, x);
     right_holder = pieces_.back().left_end;
     event(t, "cavitation", x, {piece_body_name(left_piece)});
+    if (smooth_in.any_smooth) {
+      // A smooth wave's step decided this crack: a finer step would part the body elsewhere.
+      if (qualitative_cracks_++ == 0) qualitative_body_ = pieces_[left_piece].body;
+      qualitative_since_ = std::min(qualitative_since_, t);
+    }
   }
   if (right_holder != kNone) {
     const std::size_t m = emitted_right_.size();

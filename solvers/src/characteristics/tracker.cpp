@@ -14,6 +14,7 @@
 #include "rigidity/errors.hpp"
 #include "rigidity/run_recorder.hpp"
 #include "rigidity/solvers/characteristics.hpp"
+#include "rigidity/units.hpp"
 
 namespace rigidity::characteristics {
 
@@ -256,6 +257,19 @@ RunResult Tracker::run() {
   result_.solver_numbers.emplace_back("fronts_alive_max", static_cast<double>(live_fronts_max_));
   result_.solver_numbers.emplace_back("wave_resolution", coarsest_resolution_);
   result_.solver_numbers.emplace_back("fan_step_max", widest_fan_step_);
+  if (qualitative_cracks_ > 0) {
+    // In the scene's units, as every time a run reports.
+    const double since = from_natural(qualitative_since_, Dimension::time, scene_.units);
+    result_.solver_numbers.emplace_back("qualitative_from", since);
+    result_.solver_numbers.emplace_back("cracks_by_smooth_waves", static_cast<double>(qualitative_cracks_));
+    result_.warnings.push_back("from t = " + number(since) + " " +
+                               std::string(unit_symbol(Dimension::time, scene_.units)) +
+                               " the result is qualitative: body '" + scene_.bodies[qualitative_body_].name +
+                               "' cracked where the steps of a smooth wave decided it (" +
+                               std::to_string(qualitative_cracks_) + (qualitative_cracks_ == 1 ? " crack" : " cracks") +
+                               "), so where and when it parts, and all that follows, changes with solver.tolerance; "
+                               "the error bound does not cover it");
+  }
   const auto two_digits = [](double v) {
     std::ostringstream os;
     os.precision(2);

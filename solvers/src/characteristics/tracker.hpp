@@ -606,6 +606,11 @@ class Tracker {
   std::unique_ptr<MaterialMemo> memo_;
   double fan_step_ = 1e-12;
   bool fan_capped_ = false;
+  /// Cracks that a smooth wave's steps decided (a step came in where the body parted): where
+  /// and when the body parts then depends on the steps, so what follows is qualitative.
+  double qualitative_since_ = kInf;
+  long qualitative_cracks_ = 0;
+  int qualitative_body_ = kNone;  ///< the body of the first such crack
   std::vector<CentredFan> fans_;
   std::vector<int> free_fans_;
   /// A step leaves its centred fan (it interacts, or moves off its line).
