@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "characteristics/tracker.hpp"
 #include "rigidity/units.hpp"
 
 namespace rigidity {
@@ -90,8 +91,10 @@ std::string budget_stop_reason(const Scene& scene, Budget budget, double t) {
   std::vector<std::string> why;
   if (!traits.fanned.empty())
     why.push_back("the rarefaction fans of " + join(traits.fanned, " and ") +
-                  " are split into steps of at least 2 solver.tolerance = " + readable(2.0 * scene.solver.tolerance) +
-                  " in their Riemann invariant, and every step that reaches a contact or an end makes new fronts");
+                  ", once something reaches them, are split into steps of " +
+                  readable(characteristics::fan_step_for(scene.solver.tolerance)) +
+                  " in their Riemann invariant (0.7 √solver.tolerance), and every step that reaches a contact or an "
+                  "end makes new fronts");
   if (traits.interfaces || traits.several_bodies || !traits.parting.empty())
     why.push_back(std::string("every reflection and transmission at ") +
                   (traits.interfaces ? "a material interface, " : "") + (traits.several_bodies ? "a contact, " : "") +

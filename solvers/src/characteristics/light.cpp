@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <deque>
 #include <vector>
 
 #include "rigidity/errors.hpp"
@@ -366,6 +367,30 @@ void Tracker::record_light_segments(int piece, double t) {
       if (t > f.t0) recorder_.front(FrontSegment{f.t0, f.x0, t, f.x_at(t, family), FrontKind::contact, family});
     }
   }
+}
+
+void Tracker::enter_light(std::deque<LightFront>& queue, const Node& f, double t, bool lattice) {
+  LightFront& entered = queue.back();
+  entered.carried = f.carried;
+  entered.smooth = f.smooth;
+  const std::size_t n = queue.size();
+  if (!f.smooth || n < 2 || !queue[n - 2].smooth) return;
+  const double speed = std::abs(speeds_of(f.right, f.family).lagrangian);
+  const double width = speed * (t - queue[n - 2].t0);
+  const auto jump = [](const LightFront& g) { return std::abs(g.j_ahead - g.j_behind); };
+  double error = 0.25 * f.strength * width;  // the staircase's
+  if (!lattice && n >= 3 && queue[n - 3].smooth) {
+    // The line's: the change of slope between the last two strips × their width² / 12.
+    const double before = speed * (queue[n - 2].t0 - queue[n - 3].t0);
+    if (width > 0.0 && before > 0.0) {
+      const double slope = 0.5 * (jump(queue[n - 2]) + jump(entered)) / width;
+      const double slope_before = 0.5 * (jump(queue[n - 3]) + jump(queue[n - 2])) / before;
+      const double mean = 0.5 * (width + before);
+      error = std::min(error, std::abs(slope - slope_before) * mean * mean / 12.0);
+    }
+  }
+  error_fans_ += error;
+  entered.carried += error;
 }
 
 }  // namespace rigidity::characteristics
