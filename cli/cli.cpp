@@ -41,7 +41,10 @@ constexpr Command kCommands[] = {
      "system's time limit; exit 143), however often it is sent. A second Ctrl-C, half a\n"
      "second or more after the first, quits at once without the outputs. A run that\n"
      "reaches solver.max_fronts or solver.max_interactions stops the same way with status\n"
-     "'stopped' (exit 1), and says what to change.\n"
+     "'stopped' (exit 1), and says what to change. A run that meets a state with no\n"
+     "classical solution (a material crushed to zero length) stops there the same way,\n"
+     "with status 'inadmissible' (exit 3), the error bound at that instant, and whether\n"
+     "that bound could move or remove the stop.\n"
      "\n"
      "options:\n"
      "  --out DIR              output directory (default out/<scene name>); an earlier run's\n"
@@ -155,9 +158,9 @@ const Command* find_command(std::string_view name) {
 
 constexpr std::string_view kExitStatus =
     "exit status: 0 done, 1 internal failure or a run stopped by a budget, 2 invalid input,\n"
-    "             3 valid scene without a classical solution (physically inadmissible),\n"
-    "             130 a run interrupted by Ctrl-C, 143 by SIGTERM (its outputs up to then\n"
-    "             are written)\n";
+    "             3 valid scene without a classical solution (physically inadmissible; a\n"
+    "             run that meets one writes its outputs up to then), 130 a run interrupted\n"
+    "             by Ctrl-C, 143 by SIGTERM (its outputs up to then are written)\n";
 
 }  // namespace
 

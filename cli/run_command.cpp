@@ -452,6 +452,7 @@ int run_command(std::span<const std::string> args, std::ostream& out) {
 
   RunResult result;
   WallProbeExtremes wall_probe;
+  std::optional<std::string> inadmissible;  // the solver's message, if the run met no classical solution
   try {
     // Outputs stream into a temporary directory, renamed into place once complete;
     // an exception leaves nothing behind.
@@ -463,7 +464,14 @@ int run_command(std::span<const std::string> args, std::ostream& out) {
       progress.emplace(scene);
       recorder.on_progress([&progress](const RunProgress& p) { progress->show(p); });
     }
-    result = solve(scene, recorder);
+    try {
+      result = solve(scene, recorder);
+    } catch (const InadmissibleStop& stop) {
+      // The run up to the instant it met no classical solution: its outputs are written as
+      // an interrupted run's are, and the exit status is 3 all the same.
+      result = stop.result();
+      inadmissible = stop.what();
+    }
     if (progress) progress->clear();
     files.commit(result);
     wall_probe = recorder.wall_probe();
@@ -477,6 +485,16 @@ int run_command(std::span<const std::string> args, std::ostream& out) {
     for (const std::string& warning : result.warnings) std::cerr << "warning: " << warning << "\n";
     print_summary(out, scene, result, dir);
     if (default_scene) print_paper_comparison(out, scene, result, wall_probe);
+  }
+  if (inadmissible) {
+    const std::string unit(unit_symbol(Dimension::time, scene.units));
+    std::cerr << "error: " << *inadmissible << "\n"
+              << "the run stopped there, at t = "
+              << number(from_natural(result.t_reached, Dimension::time, scene.units)) << " " << unit
+              << " of t_end = " << number(from_natural(scene.t_end, Dimension::time, scene.units)) << " " << unit
+              << " (status inadmissible); the outputs up to then are in " << dir << "\n"
+              << result.verdict << "\n";
+    return kExitInadmissible;
   }
   if (result.status == to_string(RunStatus::stopped)) {
     std::cerr << "stopped: " << result.stop_reason << "\n";

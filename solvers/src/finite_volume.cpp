@@ -890,18 +890,26 @@ RunResult Scheme::run() {
       dt = dt < 2.0 * stable ? 0.5 * dt : stable;
       lands_on_target = false;
     }
-    reconstruct(dt);
-    face_fluxes(t);
-    // A gap that closes within the step: land on its closure.
-    for (int pass = 0; pass < kGapClosurePasses; ++pass) {
-      double closure = kInf;
-      for (int j = 0; j <= static_cast<int>(bodies_.size()); ++j) closure = std::min(closure, closing_time(j));
-      if (!(closure < dt)) break;
-      dt = closure;
-      lands_on_target = false;
-      if (order_ == 1) break;  // first-order fluxes do not depend on the step
+    try {
       reconstruct(dt);
       face_fluxes(t);
+      // A gap that closes within the step: land on its closure.
+      for (int pass = 0; pass < kGapClosurePasses; ++pass) {
+        double closure = kInf;
+        for (int j = 0; j <= static_cast<int>(bodies_.size()); ++j) closure = std::min(closure, closing_time(j));
+        if (!(closure < dt)) break;
+        dt = closure;
+        lands_on_target = false;
+        if (order_ == 1) break;  // first-order fluxes do not depend on the step
+        reconstruct(dt);
+        face_fluxes(t);
+      }
+    } catch (const InadmissibleError& e) {
+      // No classical solution at a face from t on (a material crushed, ...): the cells are
+      // still at t, where the books close.
+      recorder_.halt(t, e.what());
+      result_.inadmissible = e.where().value_or(Inadmissibility::at(t));
+      break;
     }
     advance(dt);
     const double t_next = lands_on_target ? target : t + dt;

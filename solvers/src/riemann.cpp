@@ -768,12 +768,15 @@ void require_solved(const RiemannSolution& sol, const Material& material, double
     const Material& m = sol.material != nullptr ? *sol.material : material;
     const Stretch extreme =
         std::abs(sol.left.stretch.log()) > std::abs(sol.right.stretch.log()) ? sol.left.stretch : sol.right.stretch;
+    Inadmissibility unrepresentable = Inadmissibility::at(t, x);
+    unrepresentable.material = std::string(m.model());
     throw InadmissibleError("no state double precision can carry at t = " + in_units(t, Dimension::time) +
-                            ", x = " + in_units(x, Dimension::length) + ": material '" + std::string(m.model()) +
-                            "' would reach s = exp(" + shortest(extreme.log()) +
-                            ") and p = " + in_units(sol.pressure, Dimension::pressure) +
-                            " (double precision carries s in [1e-300, 1e300] and |p| below 1e300); the bodies "
-                            "meet too fast for this material: lower their Lorentz factors");
+                                ", x = " + in_units(x, Dimension::length) + ": material '" + std::string(m.model()) +
+                                "' would reach s = exp(" + shortest(extreme.log()) +
+                                ") and p = " + in_units(sol.pressure, Dimension::pressure) +
+                                " (double precision carries s in [1e-300, 1e300] and |p| below 1e300); the bodies "
+                                "meet too fast for this material: lower their Lorentz factors",
+                            unrepresentable);
   }
   const Material& m = sol.material != nullptr ? *sol.material : material;
   const std::string model(m.model());
@@ -822,7 +825,13 @@ void require_solved(const RiemannSolution& sol, const Material& material, double
     what += " its limit Psi_min = " + shortest(sol.limit_psi) +
             " (its largest tension, p = " + in_units(m.max_tension(), Dimension::pressure) + ")";
   }
-  throw InadmissibleError(what);
+  Inadmissibility stop = Inadmissibility::at(t, x);
+  stop.relative_speed = std::abs(std::tanh(sol.impact_rapidity));
+  stop.psi_needed = demanded_known ? sol.demanded_psi : Inadmissibility::kUnknown;
+  stop.psi_limit = sol.limit_psi;
+  stop.in_tension = sol.in_tension;
+  stop.material = model;
+  throw InadmissibleError(what, std::move(stop));
 }
 
 bool wave_is_shock(const Material& m, const State& outer, Stretch star, int family) {

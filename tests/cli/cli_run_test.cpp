@@ -6,10 +6,13 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <optional>
 #include <regex>
+#include <set>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -222,7 +225,136 @@ TEST_F(CliTest, RunOfAnInadmissibleSceneExitsThree) {
   const CliOutcome r = rigidity("run " + scene);
   EXPECT_EQ(r.exit_status, 3) << r.out << r.err;
   EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;
-  EXPECT_FALSE(fs::exists(dir() / "out"));
+  // Crushed at its first impact: the outputs up to then, status inadmissible.
+  const mini_json::Value summary = mini_json::parse(read_text(dir() / "out" / "hooke_too_fast" / "summary.json"));
+  EXPECT_EQ(summary["status"].string, "inadmissible");
+}
+
+// ---- a run that meets no classical solution mid-way (exit 3) ------------------------------
+
+const std::string kCrushedScene = std::string(RIGIDITY_SOURCE_DIR) + "/tests/scenes/crushed_hooke.yaml";
+constexpr double kCrushTime = 2.4501400240519637;  // where the bar's reflected compression crushes it
+
+/// Every CSV cell of `text` that reads as NaN or an infinity ("nan", "-inf", ...), as "row:column".
+std::vector<std::string> non_finite_cells(const std::string& text) {
+  std::vector<std::string> found;
+  std::istringstream lines(text);
+  std::string line;
+  for (int row = 1; std::getline(lines, line); ++row) {
+    std::istringstream cells(line);
+    std::string cell;
+    for (int column = 1; std::getline(cells, cell, ','); ++column) {
+      std::string lower;
+      for (const char c : cell) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (!lower.empty() && (lower[0] == '-' || lower[0] == '+')) lower.erase(0, 1);
+      if (lower == "nan" || lower == "inf" || lower == "infinity")
+        found.push_back(std::to_string(row) + ":" + std::to_string(column));
+    }
+  }
+  return found;
+}
+
+/// The rows of a CSV file after its header, each split at its commas.
+std::vector<std::vector<std::string>> csv_rows(const fs::path& path) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream lines(read_text(path));
+  std::string line;
+  std::getline(lines, line);  // the header
+  while (std::getline(lines, line)) {
+    std::vector<std::string> cells;
+    std::istringstream split(line);
+    for (std::string cell; std::getline(split, cell, ',');) cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+TEST_F(CliTest, ACrushMidRunWritesItsOutputsUpToThatInstantWithItsErrorBound) {
+  const CliOutcome r = rigidity("run " + shell_quote(kCrushedScene) + " --out run");
+  ASSERT_EQ(r.exit_status, 3) << r.out << r.err;
+  // The terminal says what happened, when, at what impact speed, and what the bound makes of it.
+  EXPECT_TRUE(contains(r.err, "error: no classical solution at t = 2.4501400240519637 L/c, x = 1.8 L")) << r.err;
+  EXPECT_TRUE(contains(r.err, "an impact at relative speed 0.547")) << r.err;
+  EXPECT_TRUE(contains(r.err, "would crush the material 'hooke' to zero length")) << r.err;
+  EXPECT_TRUE(contains(r.err,
+                       "the run stopped there, at t = 2.450140024 L/c of t_end = 5 L/c (status inadmissible); "
+                       "the outputs up to then are in run"))
+      << r.err;
+  EXPECT_TRUE(contains(r.err, "is small against the margin by which the material would be taken beyond its limit"))
+      << r.err;
+  EXPECT_TRUE(contains(r.out, "crushed_hooke (" + kCrushedScene + "): inadmissible at t = 2.450140024")) << r.out;
+
+  // Complete: renamed into place, nothing left beside it.
+  const fs::path out = dir() / "run";
+  for (const auto& entry : fs::directory_iterator(dir()))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+  for (const char* file :
+       {"summary.json", "events.csv", "probes.csv", "snapshots.csv", "fronts.csv", "resolved_scene.yaml"})
+    EXPECT_TRUE(fs::exists(out / file)) << file;
+
+  const mini_json::Value summary = mini_json::parse(read_text(out / "summary.json"));
+  EXPECT_EQ(summary["status"].string, "inadmissible");
+  EXPECT_DOUBLE_EQ(summary["t_reached"].number, kCrushTime);
+  EXPECT_TRUE(contains(summary["stop_reason"].string, "would crush the material 'hooke' to zero length"));
+  const mini_json::Value& at = summary["inadmissible"];
+  EXPECT_DOUBLE_EQ(at["t"].number, kCrushTime);
+  EXPECT_DOUBLE_EQ(at["x"].number, 1.8);  // at the wall
+  EXPECT_EQ(at["material"].string, "hooke");
+  EXPECT_FALSE(at["in_tension"].boolean);
+  EXPECT_NEAR(at["psi_limit"].number, std::atanh(0.6), 1e-12);  // tanh Psi_max = V
+  EXPECT_GT(at["psi_needed"].number, at["psi_limit"].number);
+  EXPECT_NEAR(at["margin"].number, at["psi_needed"].number - at["psi_limit"].number, 1e-15);
+  EXPECT_GT(at["relative_speed"].number, 0.5);
+  EXPECT_LT(at["relative_speed"].number, 0.6);
+  // The bound at that instant: finite, not negative, not zero (the gas's fans made errors), and
+  // the solver's own.
+  const double bound = at["error_bound"].number;
+  EXPECT_TRUE(std::isfinite(bound));
+  EXPECT_GT(bound, 0.0);
+  EXPECT_LT(bound, 0.01);
+  EXPECT_EQ(bound, summary["solver"]["error_bound"].number);
+  EXPECT_FALSE(at["verdict_uncertain"].boolean);  // a margin of 0.54 in Psi, over 100 times the bound
+
+  // The books at that instant close: what the stop left is a state of the run, not a half-done
+  // interaction.
+  const mini_json::Value& c = summary["conservation"];
+  const double energy_residual =
+      c["energy_final"].number + c["energy_dissipated"].number - c["energy_initial"].number - c["wall_work"].number;
+  const double momentum_residual = c["momentum_final"].number - c["momentum_initial"].number - c["wall_impulse"].number;
+  EXPECT_LT(std::abs(energy_residual), 1e-3 * c["energy_initial"].number);
+  EXPECT_LT(std::abs(momentum_residual), 1e-3 * c["momentum_initial"].number);
+  EXPECT_GE(c["energy_dissipated"].number, 0.0);
+
+  // Outputs up to the stop and not beyond; no NaN anywhere.
+  for (const char* file : {"events.csv", "probes.csv", "snapshots.csv", "fronts.csv"})
+    EXPECT_TRUE(non_finite_cells(read_text(out / file)).empty()) << file;
+  const auto probes = csv_rows(out / "probes.csv");
+  ASSERT_FALSE(probes.empty());
+  double last_probe = 0.0;
+  for (const auto& row : probes) last_probe = std::max(last_probe, std::stod(row.at(0)));
+  EXPECT_LE(last_probe, kCrushTime);
+  EXPECT_GT(last_probe, kCrushTime - 0.05);  // every 0.05 up to the stop
+  std::set<std::string> snapshot_times;
+  for (const auto& row : csv_rows(out / "snapshots.csv")) snapshot_times.insert(row.at(0));
+  EXPECT_EQ(snapshot_times, (std::set<std::string>{"0.5", "1"}));  // 4 is after the stop
+  const auto fronts = csv_rows(out / "fronts.csv");
+  ASSERT_FALSE(fronts.empty());
+  for (const auto& row : fronts) EXPECT_LE(std::stod(row.at(2)), kCrushTime);
+  const auto events = csv_rows(out / "events.csv");
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].at(1), "contact");
+}
+
+TEST_F(CliTest, ACrushTheBoundCouldMoveSaysAFinerToleranceMayMoveOrRemoveIt) {
+  // At tolerance 0.05 the bound at the stop is about 0.05: not small against anything.
+  const CliOutcome r = rigidity("run " + shell_quote(kCrushedScene) + " --out run --set solver.tolerance=0.05");
+  ASSERT_EQ(r.exit_status, 3) << r.out << r.err;
+  EXPECT_TRUE(contains(r.err, "a finer solver.tolerance may move or remove this stop")) << r.err;
+  const mini_json::Value summary = mini_json::parse(read_text(dir() / "run" / "summary.json"));
+  EXPECT_EQ(summary["status"].string, "inadmissible");
+  EXPECT_TRUE(summary["inadmissible"]["verdict_uncertain"].boolean);
+  EXPECT_GE(summary["inadmissible"]["error_bound"].number, 0.01);
+  EXPECT_TRUE(contains(summary["inadmissible"]["verdict"].string, "may move or remove this stop"));
 }
 
 TEST_F(CliTest, AnInadmissibleSiSceneSaysWhyInItsOwnUnits) {

@@ -40,6 +40,13 @@ void RunRecorder::stop(std::string reason) {
   stop_reason_ = std::move(reason);
 }
 
+void RunRecorder::halt(double t, std::string reason) {
+  stop_pending_ = false;
+  status_ = RunStatus::inadmissible;
+  t_reached_ = t;
+  stop_reason_ = std::move(reason);
+}
+
 void RunRecorder::on_progress(ProgressCallback callback, double delay_s, double interval_s) {
   progress_ = std::move(callback);
   progress_delay_s_ = delay_s;

@@ -1,5 +1,6 @@
 // summary.json (SPEC §5): the run at a glance, in the scene's units.
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -64,6 +65,31 @@ std::string summary_json(const Scene& scene, const RunResult& result) {
   if (!ok) json.key("stop_reason").text(result.stop_reason);
   w.member("t_end", scene.t_end, Dimension::time);
   w.member("t_reached", ok ? scene.t_end : result.t_reached, Dimension::time);
+  if (result.inadmissible) {
+    // Where the run met no classical solution, how far beyond its limit the material would
+    // have been taken, and whether the run's error bound there could move or remove the stop.
+    const Inadmissibility& at = *result.inadmissible;
+    const auto value = [&](std::string_view key, double natural_value, Dimension d) {
+      if (std::isfinite(natural_value)) {
+        w.member(key, natural_value, d);
+      } else {
+        json.key(key).null();
+      }
+    };
+    json.key("inadmissible").begin_object();
+    value("t", at.t, Dimension::time);
+    value("x", at.x, Dimension::length);
+    json.key("material").text(at.material);
+    json.key("in_tension").boolean(at.in_tension);
+    value("relative_speed", at.relative_speed, Dimension::velocity);
+    value("psi_needed", at.psi_needed, Dimension::dimensionless);
+    value("psi_limit", at.psi_limit, Dimension::dimensionless);
+    value("margin", at.margin(), Dimension::dimensionless);
+    value("error_bound", result.solver_number("error_bound"), Dimension::dimensionless);
+    json.key("verdict_uncertain").boolean(result.verdict_uncertain);
+    json.key("verdict").text(result.verdict);
+    json.end_object();
+  }
 
   json.key("solver").begin_object();
   json.key("method").text(result.solver.empty() ? method_name(scene.solver.method) : std::string_view(result.solver));

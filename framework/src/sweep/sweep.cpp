@@ -630,7 +630,15 @@ SweepRow run_sweep_case(const Sweep& sweep, std::size_t index, const std::string
     std::optional<StreamingRecorder> files;
     if (!case_dir.empty()) files.emplace(scene, case_dir);
     CollectRecorder recorder(scene, sweep, files ? &*files : nullptr);
-    const RunResult result = solve(scene, recorder);
+    RunResult result;
+    try {
+      result = solve(scene, recorder);
+    } catch (const InadmissibleStop& stop) {
+      // No classical solution from some instant on: the case's outputs up to then are kept
+      // (its figures are not taken from a run cut short by its physics).
+      if (files) files->commit(stop.result());
+      throw;
+    }
     if (files) files->commit(result);
     row.status = result.status;
     row.exit_code = result.status == to_string(RunStatus::ok)        ? kExitOk
@@ -645,6 +653,10 @@ SweepRow run_sweep_case(const Sweep& sweep, std::size_t index, const std::string
     row.status = "invalid";
     row.exit_code = kExitInvalidInput;
     row.message = one_line(e.what());
+  } catch (const InadmissibleStop& e) {
+    row.status = "inadmissible";
+    row.exit_code = kExitInadmissible;
+    row.message = one_line(std::string(e.what()) + "; " + e.result().verdict);
   } catch (const InadmissibleError& e) {
     row.status = "inadmissible";
     row.exit_code = kExitInadmissible;

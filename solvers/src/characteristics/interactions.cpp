@@ -662,6 +662,38 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     }
 
   RiemannSolution sol;
+  // No classical solution: the run stops at t and Tracker::run closes the books there. The
+  // errors the fronts taken in carried stay in its bound, and the right state, which the last
+  // of them took with it, is put back right of the meeting: on the last end or interface of
+  // the group, else on a front of no strength at x.
+  const auto require = [&](const Material& limiting) {
+    try {
+      require_solved(sol, limiting, t, x, scene_.units);
+    } catch (const InadmissibleError&) {
+      error_lost_ += carried_in + steps_error[0] + steps_error[1] + steps_taken[0] + steps_taken[1];
+      if (after != kNone && !nodes_[after].alive) {
+        int holder = kNone;
+        for (auto id = group.rbegin(); id != group.rend() && holder == kNone; ++id)
+          if (nodes_[*id].alive) holder = *id;
+        if (holder == kNone) {
+          const double X = label_in(right_piece);
+          holder = new_node(NodeKind::front, right_piece);
+          Node& h = nodes_[holder];
+          h.front_kind = FrontKind::contact;
+          h.family = 1;
+          h.t0 = t;
+          h.x0 = x;
+          h.X0 = X;
+          ++live_fronts_;
+          const int next = nodes_[before].next;
+          link(before, holder);
+          link(holder, next);
+        }
+        nodes_[holder].right = right_region;
+      }
+      throw;
+    }
+  };
   const Material* mL = left_region.material;
   const Material* mR = right_region.material;
   if (left_boundary || right_boundary) {
@@ -677,7 +709,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     } else {
       sol = solve_free_end(m, st, side);
     }
-    require_solved(sol, m, t, x, scene_.units);
+    require(m);
     if (sol.parted && e.attach == Attach::boundary) {
       const int wall = e.partner;
       Wall& w = walls_[wall];
@@ -695,8 +727,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
       min_p = std::max(mL->cavitation_pressure(), mR->cavitation_pressure());
     }
     sol = solve_riemann(*mL, left_region.state, *mR, right_region.state, min_p);
-    require_solved(sol, sol.status == Status::out_of_range && mR->psi_max() < mL->psi_max() ? *mR : *mL, t, x,
-                   scene_.units);
+    require(sol.status == Status::out_of_range && mR->psi_max() < mL->psi_max() ? *mR : *mL);
     const int holder = interface != kNone ? interface : contact_left;
     if (holder != kNone && !sol.parted) hold_back_weak_wave(sol, left_region, right_region, holder, min_p, t);
   }

@@ -170,23 +170,32 @@ RunResult Tracker::run() {
     }
     if (t_event > scene_.t_end) break;
     if (recorder_.poll(t_event, live_fronts_, result_.stats.interactions)) break;  // a budget, Ctrl-C; progress
-    if (rare_first) {
-      const Event e = queue_.front();
-      pop_event();
-      handle(e);
-    } else {
-      // A crossing done in place reschedules (or removes) the meeting it was, which moves
-      // the entry down from the top once instead of removing it and inserting another.
-      const MeetingQueue::Entry m = meetings_.top();
-      if (split_reached_fan(m.node, m.t)) {
-        // A fan's edge was reached: its steps take its place, and the meetings they make go on.
-      } else if (interact_in_place(m.node, nodes_[m.node].next, m.t)) {
-        if (!meetings_.empty() && meetings_.top().node == m.node && meetings_.top().seq == m.seq)
-          meetings_.erase(m.node);
+    try {
+      if (rare_first) {
+        const Event e = queue_.front();
+        pop_event();
+        handle(e);
       } else {
-        meetings_.erase(m.node);
-        resolve(m.node, nodes_[m.node].next, m.t);
+        // A crossing done in place reschedules (or removes) the meeting it was, which moves
+        // the entry down from the top once instead of removing it and inserting another.
+        const MeetingQueue::Entry m = meetings_.top();
+        if (split_reached_fan(m.node, m.t)) {
+          // A fan's edge was reached: its steps take its place, and the meetings they make go on.
+        } else if (interact_in_place(m.node, nodes_[m.node].next, m.t)) {
+          if (!meetings_.empty() && meetings_.top().node == m.node && meetings_.top().seq == m.seq)
+            meetings_.erase(m.node);
+        } else {
+          meetings_.erase(m.node);
+          resolve(m.node, nodes_[m.node].next, m.t);
+        }
       }
+    } catch (const InadmissibleError& e) {
+      // No classical solution from t_event on (a material crushed, ...): the books close at
+      // t_event. The interaction that found it emitted nothing; the fronts it took in met at
+      // one point, so what lay between them has no length at t_event.
+      recorder_.halt(t_event, e.what());
+      result_.inadmissible = e.where().value_or(Inadmissibility::at(t_event));
+      break;
     }
     if (validating()) validate(t_event);
   }

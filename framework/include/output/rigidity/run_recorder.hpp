@@ -27,15 +27,17 @@ namespace rigidity {
 
 /// How a run ended.
 enum class RunStatus {
-  ok,           ///< reached t_end
-  stopped,      ///< reached a budget (solver.max_fronts, solver.max_interactions)
-  interrupted,  ///< interrupted (Ctrl-C)
+  ok,            ///< reached t_end
+  stopped,       ///< reached a budget (solver.max_fronts, solver.max_interactions)
+  interrupted,   ///< interrupted (Ctrl-C)
+  inadmissible,  ///< met a state with no classical solution (a material crushed to zero length, ...)
 };
 [[nodiscard]] constexpr const char* to_string(RunStatus s) {
   switch (s) {
     case RunStatus::ok: return "ok";
     case RunStatus::stopped: return "stopped";
     case RunStatus::interrupted: return "interrupted";
+    case RunStatus::inadmissible: return "inadmissible";
   }
   return "?";
 }
@@ -83,6 +85,11 @@ class RunRecorder {
   /// stops the run with status `stopped`. `reason` says which budget, when, and what
   /// to change; the first reason is kept.
   void stop(std::string reason);
+
+  /// The solver met, at time t, a state with no classical solution (why: `reason`, the
+  /// InadmissibleError's message): it stops at once, with its state complete up to t, closes
+  /// its books at t (= t_reached()) and returns with status `inadmissible`.
+  void halt(double t, std::string reason);
 
   /// Called by the solver's main loop before it advances past time t, with its state
   /// complete up to t. True: the run must stop; the solver closes its books at t

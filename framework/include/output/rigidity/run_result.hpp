@@ -6,11 +6,13 @@
 /// (solve(scene)), and stay empty when it streams them to disk.
 
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "rigidity/errors.hpp"
 #include "rigidity/quantity.hpp"
 
 namespace rigidity {
@@ -90,10 +92,17 @@ struct FrontSegment {
 };
 
 struct RunResult {
-  std::string status = "ok";  ///< ok | stopped (a budget) | interrupted (Ctrl-C): to_string(RunStatus)
-  double t_reached = 0.0;     ///< where the books were closed: t_end when ok, else the time reached
-  std::string stop_reason;    ///< stopped or interrupted: why, and what to change
-  std::string solver;         ///< "characteristics" | "finite_volume"
+  /// ok | stopped (a budget) | interrupted (Ctrl-C) | inadmissible (no classical solution
+  /// from t_reached on): to_string(RunStatus)
+  std::string status = "ok";
+  double t_reached = 0.0;   ///< where the books were closed: t_end when ok, else the time reached
+  std::string stop_reason;  ///< stopped, interrupted or inadmissible: why, and what to change
+  /// inadmissible: where and how (the impact, the limit and how far beyond it), whether the
+  /// run's error bound could move or remove that stop, and a sentence saying which and why.
+  std::optional<Inadmissibility> inadmissible;
+  bool verdict_uncertain = false;
+  std::string verdict;
+  std::string solver;                                          ///< "characteristics" | "finite_volume"
   std::vector<std::pair<std::string, double>> solver_numbers;  ///< e.g. tolerance, cells
   /// The solver number called `name`, NaN if the run reported none.
   [[nodiscard]] double solver_number(std::string_view name) const {
