@@ -18,9 +18,48 @@ rigidity.NumericalError.
 
 import json as _json
 import os as _os
+import sys as _sys
 import warnings as _warnings
 
-from . import _rigidity
+
+def _load_extension():
+    """The compiled module rigidity._rigidity, or an ImportError that says what is missing for
+    this interpreter and how to get it."""
+    here = _os.path.dirname(_os.path.abspath(__file__))
+    python = "%s (Python %d.%d)" % (_sys.executable or "this Python", *_sys.version_info[:2])
+    try:
+        import numpy  # noqa: F401
+    except ImportError as error:
+        raise ImportError(
+            "rigidity needs NumPy, which %s cannot import (%s). Install it into this interpreter "
+            "(`%s -m pip install numpy`), or use one that has it: Debian's /usr/bin/python3 with "
+            "`apt-get install python3-numpy`, or a virtual environment made with "
+            "`/usr/bin/python3 -m venv --system-site-packages`; docs/python.md says how to install rigidity."
+            % (python, error, _sys.executable or "python3")) from None
+    try:
+        from . import _rigidity
+        return _rigidity
+    except ImportError as error:
+        import glob
+        import importlib.machinery
+        built = sorted(_os.path.basename(f) for f in glob.glob(_os.path.join(here, "_rigidity*")))
+        suffixes = importlib.machinery.EXTENSION_SUFFIXES
+        install = ("from the repository's root, `%s -m pip install .` builds and installs it for this "
+                   "interpreter (docs/python.md)" % (_sys.executable or "python3"))
+        if not built:
+            message = ("rigidity's compiled module _rigidity is not in %s (this is the package's source, "
+                       "or an incomplete install): %s; or build the tree (bash scripts/test.sh) and put "
+                       "build-tests/python on PYTHONPATH for Debian's /usr/bin/python3" % (here, install))
+        elif not any("_rigidity" + suffix in built for suffix in suffixes):
+            message = ("rigidity's compiled module in %s (%s) was built for another Python; %s loads only "
+                       "_rigidity%s: %s" % (here, ", ".join(built), python, suffixes[0], install))
+        else:
+            raise ImportError("rigidity's compiled module in %s (%s) does not load in %s: %s" % (
+                here, ", ".join(built), python, error)) from error
+        raise ImportError(message) from None
+
+
+_rigidity = _load_extension()
 
 InputError = _rigidity.InputError
 InadmissibleError = _rigidity.InadmissibleError
