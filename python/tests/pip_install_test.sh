@@ -7,7 +7,7 @@
 #
 #   pip_install_test.sh SOURCE_DIR WORK_DIR [PYTHON]      (PYTHON: default /usr/bin/python3)
 #
-# 1 to 2.5 minutes on 2 cores (CMAKE_BUILD_PARALLEL_LEVEL, default 2): it builds the library and
+# 1.5 to 4.5 minutes on 2 cores (CMAKE_BUILD_PARALLEL_LEVEL, default 2): it builds the library and
 # the extension afresh.
 set -euo pipefail
 source_dir=$(realpath "$1")
