@@ -19,14 +19,29 @@ void Tracker::record_segment(Node& n, double t) {
 
 void Tracker::account_front_end(int id, double t) {
   const Node& n = nodes_[id];
-  if (n.front_kind != FrontKind::shock || n.prev == kNone) return;
+  if (n.prev == kNone || !(t > n.t0)) return;
+  const bool jump = n.front_kind == FrontKind::shock && !n.smooth;
+  // Contacts conserve both exactly; an unsplit fan is the exact fan, which does too.
+  if (!jump && (!n.smooth || unsplit(id))) return;
   const Region& left = nodes_[n.prev].right;
   const Region& right = n.right;
   if (left.material == nullptr || right.material == nullptr) return;
+  const auto flux = [](const Region& r) { return r.material->pressure(r.state.stretch) * std::tanh(r.state.rapidity); };
+  if (!jump) {
+    if (right.material->linearly_degenerate()) return;  // moves at its characteristic speed: exact
+    // A step of a smooth wave: what its label-jump speed m misses of m[E] = [F] and
+    // m[P] = [p], differences of O(1) numbers that are third order in its strength.
+    const double dE = energy_density(*right.material, right.state) - energy_density(*left.material, left.state);
+    const double dP = momentum_density(*right.material, right.state) - momentum_density(*left.material, left.state);
+    const double dp = right.material->pressure(right.state.stretch) - left.material->pressure(left.state.stretch);
+    steps_energy_ -= (n.dXdt * dE - (flux(right) - flux(left))) * (t - n.t0);
+    steps_momentum_ -= (n.dXdt * dP - dp) * (t - n.t0);
+    return;
+  }
   // Energy removed per unit time at a front moving at m = dX/dt: m[E] − [F], with E the
-  // energy and F = p v its flux per unit label (SPEC §1), computed from the jump itself
-  // (cubic in a weak shock's strength, where the difference of O(1) energies would cancel):
-  // by set_front for the states it set, else here.
+  // energy and F = p v its flux per unit label, computed from the jump itself (cubic in a
+  // weak shock's strength, where the difference of O(1) energies would cancel): by set_front
+  // for the states it set, else here.
   const Solved<double> from_jump =
       !std::isnan(n.dissipation)
           ? Solved<double>{n.dissipation, Status::ok}
@@ -34,9 +49,7 @@ void Tracker::account_front_end(int id, double t) {
   double rate = from_jump.value;
   if (!from_jump.ok()) {
     const double jump_E = energy_density(*right.material, right.state) - energy_density(*left.material, left.state);
-    const double flux_right = right.material->pressure(right.state.stretch) * std::tanh(right.state.rapidity);
-    const double flux_left = left.material->pressure(left.state.stretch) * std::tanh(left.state.rapidity);
-    rate = n.dXdt * jump_E - (flux_right - flux_left);
+    rate = n.dXdt * jump_E - (flux(right) - flux(left));
   }
   dissipated_ += rate * (t - n.t0);
 }

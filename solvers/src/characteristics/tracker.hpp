@@ -836,6 +836,9 @@ class Tracker {
   SampleSchedule samples_{scene_};
   RunResult result_;
   double impulse_ = 0.0, wall_work_ = 0.0, dissipated_ = 0.0;
+  /// Energy and momentum the steps of smooth waves made: a step moves at the speed that keeps
+  /// lab positions continuous, which conserves them only to third order in its strength.
+  double steps_energy_ = 0.0, steps_momentum_ = 0.0;
   double last_interaction_t_ = -1.0;
   long interactions_at_this_t_ = 0;
 
