@@ -178,13 +178,13 @@ void print_summary(std::ostream& out, const Scene& scene, const RunResult& resul
                 units(b.rest_energy, Dimension::energy_per_area)});
   bodies.print(out);
 
-  // energy_final = energy_initial + wall_work - energy_dissipated (+ the droplets' and smooth
-  // steps' parts), momentum_final = momentum_initial + wall_impulse (+ theirs).
+  // energy_final = energy_initial + wall_work - energy_dissipated (+ the droplets' and the
+  // waves' parts), momentum_final = momentum_initial + wall_impulse (+ theirs).
   const Conservation& c = result.conservation;
   const double energy_residual = c.energy_residual();
   const double momentum_residual = c.momentum_residual();
   const bool droplets = c.energy_droplets != 0.0 || c.momentum_droplets != 0.0;
-  const bool steps = c.energy_steps != 0.0 || c.momentum_steps != 0.0;
+  const bool waves = c.energy_waves != 0.0 || c.momentum_waves != 0.0;
   const double energy_scale = std::max(std::abs(c.energy_initial), std::abs(c.energy_final));
   const double momentum_scale =
       std::max({std::abs(c.momentum_initial), std::abs(c.momentum_final), std::abs(c.wall_impulse)});
@@ -207,10 +207,10 @@ void print_summary(std::ostream& out, const Scene& scene, const RunResult& resul
       "",
       number(from_natural(momentum_residual, P, scene.units), 3),
       momentum_scale > 0.0 ? number(std::abs(momentum_residual) / momentum_scale, 2) : "-"};
-  if (steps) {  // what the steps of smooth waves made, before the residual
-    head.insert(head.begin() + 5, "smooth steps");
-    energy.insert(energy.begin() + 5, units(c.energy_steps, E));
-    momentum.insert(momentum.begin() + 5, units(c.momentum_steps, P));
+  if (waves) {  // what smooth steps and weak waves held back made, before the residual
+    head.insert(head.begin() + 5, "waves");
+    energy.insert(energy.begin() + 5, units(c.energy_waves, E));
+    momentum.insert(momentum.begin() + 5, units(c.momentum_waves, P));
   }
   if (droplets) {  // the droplet model's change, before the residual
     head.insert(head.begin() + 5, "droplets");

@@ -173,7 +173,7 @@ namespace {
 
 // A fan's steps move at the speed that keeps lab positions continuous, which conserves energy
 // and momentum only to third order in a step: what they make is booked on its own line
-// (energy_steps, momentum_steps), so the balance closes to round-off, and no smooth step is
+// (energy_waves, momentum_waves), so the balance closes to round-off, and no smooth step is
 // counted as dissipation. The crossed fan of a withdrawing bonded piston has no shock.
 TEST(Fan, WhatItsStepsMakeClosesTheBooks) {
   double previous = 0.0;
@@ -190,14 +190,14 @@ time: {end: 3}
     const Conservation& c = r.conservation;
     SCOPED_TRACE("tolerance " + std::to_string(tolerance));
     EXPECT_EQ(c.energy_dissipated, 0.0);
-    EXPECT_GT(c.energy_steps, 1e-7) << "the steps make energy, to third order in each";
-    EXPECT_GT(c.momentum_steps, 1e-7);
+    EXPECT_GT(c.energy_waves, 1e-7) << "the steps make energy, to third order in each";
+    EXPECT_GT(c.momentum_waves, 1e-7);
     EXPECT_NEAR(c.energy_residual(), 0.0, 1e-13 * c.energy_final);
     EXPECT_NEAR(c.momentum_residual(), 0.0, 1e-13 * std::abs(c.momentum_final));
     if (previous > 0.0) {
-      EXPECT_LT(c.energy_steps, 0.2 * previous) << "it falls with the steps' width squared";
+      EXPECT_LT(c.energy_waves, 0.2 * previous) << "it falls with the steps' width squared";
     }
-    previous = c.energy_steps;
+    previous = c.energy_waves;
   }
 }
 

@@ -164,10 +164,10 @@ std::string summary_json(const Scene& scene, const RunResult& result) {
     w.member("energy_droplets", c.energy_droplets, Dimension::energy_per_area);
     w.member("momentum_droplets", c.momentum_droplets, Dimension::momentum_per_area);
   }
-  if (c.energy_steps != 0.0 || c.momentum_steps != 0.0) {
-    // What the steps of smooth waves made, added to the balance as the droplets' is.
-    w.member("energy_steps", c.energy_steps, Dimension::energy_per_area);
-    w.member("momentum_steps", c.momentum_steps, Dimension::momentum_per_area);
+  if (c.energy_waves != 0.0 || c.momentum_waves != 0.0) {
+    // What smooth steps and weak waves held back made, added to the balance as the droplets' is.
+    w.member("energy_waves", c.energy_waves, Dimension::energy_per_area);
+    w.member("momentum_waves", c.momentum_waves, Dimension::momentum_per_area);
   }
   json.end_object();
 

@@ -437,7 +437,7 @@ Sweep load_sweep_file(const std::string& path) {
         static const std::vector<std::string> conservation = {"energy_initial", "energy_final",     "energy_dissipated",
                                                               "wall_work",      "momentum_initial", "momentum_final",
                                                               "wall_impulse",   "energy_droplets",  "momentum_droplets",
-                                                              "energy_steps",   "momentum_steps"};
+                                                              "energy_waves",   "momentum_waves"};
         const std::vector<std::string>* fields = parts[0] == "stats"          ? &stats
                                                  : parts[0] == "conservation" ? &conservation
                                                                               : nullptr;
@@ -587,8 +587,8 @@ std::optional<double> figure(const std::string& path, const Scene& scene, const 
     if (parts[1] == "wall_impulse") value = from_natural(c.wall_impulse, P, u);
     if (parts[1] == "energy_droplets") value = from_natural(c.energy_droplets, E, u);
     if (parts[1] == "momentum_droplets") value = from_natural(c.momentum_droplets, P, u);
-    if (parts[1] == "energy_steps") value = from_natural(c.energy_steps, E, u);
-    if (parts[1] == "momentum_steps") value = from_natural(c.momentum_steps, P, u);
+    if (parts[1] == "energy_waves") value = from_natural(c.energy_waves, E, u);
+    if (parts[1] == "momentum_waves") value = from_natural(c.momentum_waves, P, u);
   }
   if (value && !std::isfinite(*value)) return std::nullopt;  // never a NaN in the table
   return value;

@@ -34,8 +34,8 @@ void Tracker::account_front_end(int id, double t) {
     const double dE = energy_density(*right.material, right.state) - energy_density(*left.material, left.state);
     const double dP = momentum_density(*right.material, right.state) - momentum_density(*left.material, left.state);
     const double dp = right.material->pressure(right.state.stretch) - left.material->pressure(left.state.stretch);
-    steps_energy_ -= (n.dXdt * dE - (flux(right) - flux(left))) * (t - n.t0);
-    steps_momentum_ -= (n.dXdt * dP - dp) * (t - n.t0);
+    waves_energy_ -= (n.dXdt * dE - (flux(right) - flux(left))) * (t - n.t0);
+    waves_momentum_ -= (n.dXdt * dP - dp) * (t - n.t0);
     return;
   }
   // Energy removed per unit time at a front moving at m = dX/dt: m[E] − [F], with E the

@@ -345,8 +345,8 @@ RunResult Tracker::run() {
   c.energy_dissipated = dissipated_;
   c.energy_droplets = droplet_energy_;
   c.momentum_droplets = droplet_momentum_;
-  c.energy_steps = steps_energy_;
-  c.momentum_steps = steps_momentum_;
+  c.energy_waves = waves_energy_;
+  c.momentum_waves = waves_momentum_;
 
   // Bodies at t_end, pieces named name.1, name.2, ... left to right.
   for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {

@@ -779,10 +779,28 @@ class Tracker {
   /// and returns it.
   double close_defect(Node& n, double t) {
     if (n.defect_rate <= 0.0) return 0.0;
+    if (n.kind != NodeKind::front) book_held_back(n, t);
     const double booked = std::min(n.defect_rate * (t - n.defect_since), n.defect_cap);
     error_defects_ += booked;
     n.defect_rate = 0.0;
     return booked;
+  }
+  /// The momentum and energy a weak wave held back at interface or contact n made up to t:
+  /// its two sides keep one velocity v but pressures p_L ≠ p_R, which makes p_R − p_L of
+  /// momentum and v (p_R − p_L) of energy per unit time.
+  void book_held_back(const Node& n, double t) {
+    if (n.prev == kNone) return;
+    const Region& left = nodes_[n.prev].right;
+    const Region* right = &n.right;
+    if (n.kind == NodeKind::right_end) {
+      if (n.attach != Attach::body || n.partner == kNone) return;
+      right = &nodes_[n.partner].right;
+    }
+    if (left.material == nullptr || right->material == nullptr) return;
+    const double dp = right->material->pressure(right->state.stretch) - left.material->pressure(left.state.stretch);
+    const double dt = t - n.defect_since;
+    waves_momentum_ += dp * dt;
+    waves_energy_ += dp * 0.5 * (std::tanh(left.state.rapidity) + std::tanh(right->state.rapidity)) * dt;
   }
   /// The part of error_defects_ that waves released late took on (share_carried).
   double error_defects_released_ = 0.0;
@@ -836,9 +854,11 @@ class Tracker {
   SampleSchedule samples_{scene_};
   RunResult result_;
   double impulse_ = 0.0, wall_work_ = 0.0, dissipated_ = 0.0;
-  /// Energy and momentum the steps of smooth waves made: a step moves at the speed that keeps
-  /// lab positions continuous, which conserves them only to third order in its strength.
-  double steps_energy_ = 0.0, steps_momentum_ = 0.0;
+  /// Energy and momentum the waves followed approximately made: a step of a smooth wave moves
+  /// at the speed that keeps lab positions continuous, which conserves them only to third order
+  /// in its strength; a weak wave held back leaves its interface or contact with a pressure
+  /// jump that pushes on both sides alike.
+  double waves_energy_ = 0.0, waves_momentum_ = 0.0;
   double last_interaction_t_ = -1.0;
   long interactions_at_this_t_ = 0;
 

@@ -45,17 +45,18 @@ struct Conservation {
   /// What the front tracker's droplet model changed (a sliver of a body that carries no
   /// tension kept with its piece in the state the rest is released to): part of the balance.
   double energy_droplets = 0.0, momentum_droplets = 0.0;
-  /// What the front tracker's steps of smooth waves made: each moves at the speed that keeps
-  /// lab positions continuous, which conserves energy and momentum only to third order in
-  /// its strength. Part of the balance, like the droplets'.
-  double energy_steps = 0.0, momentum_steps = 0.0;
-  /// energy_final − (energy_initial + wall_work − energy_dissipated + energy_droplets + energy_steps).
+  /// What the waves the front tracker follows approximately made: a step of a smooth wave
+  /// moves at the speed that keeps lab positions continuous, which conserves energy and
+  /// momentum only to third order in its strength, and a weak wave held back at an interface
+  /// or contact leaves a pressure jump there. Part of the balance, like the droplets'.
+  double energy_waves = 0.0, momentum_waves = 0.0;
+  /// energy_final − (energy_initial + wall_work − energy_dissipated + energy_droplets + energy_waves).
   [[nodiscard]] double energy_residual() const {
-    return energy_final - (energy_initial + wall_work - energy_dissipated + energy_droplets + energy_steps);
+    return energy_final - (energy_initial + wall_work - energy_dissipated + energy_droplets + energy_waves);
   }
-  /// momentum_final − (momentum_initial + wall_impulse + momentum_droplets + momentum_steps).
+  /// momentum_final − (momentum_initial + wall_impulse + momentum_droplets + momentum_waves).
   [[nodiscard]] double momentum_residual() const {
-    return momentum_final - (momentum_initial + wall_impulse + momentum_droplets + momentum_steps);
+    return momentum_final - (momentum_initial + wall_impulse + momentum_droplets + momentum_waves);
   }
 };
 
