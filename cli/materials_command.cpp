@@ -26,7 +26,9 @@ std::string_view dimension_name(Dimension d) {
   return "?";
 }
 
-std::string_view type_name(ParameterType t) { return t == ParameterType::number ? "number" : "text"; }
+std::string_view type_name(ParameterType t) {
+  return t == ParameterType::number ? "number" : t == ParameterType::text ? "text" : "map of numbers";
+}
 
 std::string registered_at(const MaterialInfo& info) { return info.file + ":" + std::to_string(info.line); }
 
@@ -38,6 +40,8 @@ std::string default_text(const ParameterSpec& p) {
     append_shortest(out, *p.default_number);
   } else if (p.default_text) {
     append_json_string(out, *p.default_text);
+  } else if (p.type == ParameterType::numbers) {
+    out += "{}";  // none
   } else {
     return "optional";
   }
@@ -132,6 +136,9 @@ void print_json(std::ostream& out, const std::vector<const MaterialInfo*>& mater
         json.number(*p.default_number);
       } else if (p.default_text) {
         json.text(*p.default_text);
+      } else if (p.type == ParameterType::numbers) {
+        json.begin_object();  // none: an empty map
+        json.end_object();
       } else {
         json.null();
       }

@@ -89,7 +89,8 @@ TEST_F(CliTest, MalformedOptionsExitTwo) {
 
 // ---- rigidity materials ------------------------------------------------------------
 
-const std::set<std::string> kBuiltInMaterials = {"constant_sound_speed", "hooke", "rigid", "rigid_fluid", "tabulated"};
+const std::set<std::string> kBuiltInMaterials = {"constant_sound_speed", "formula",  "hooke", "rigid",
+                                                 "rigid_fluid",          "tabulated"};
 
 TEST_F(CliTest, MaterialsJsonListsTheBuiltInMaterials) {
   const CliOutcome r = rigidity("materials --json");

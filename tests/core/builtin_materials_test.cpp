@@ -398,9 +398,11 @@ TEST(SmallStrain, PressureKeepsFullPrecisionAtStrainOneInATrillion) {
       EXPECT_NEAR(back.value.strain(), eps, kRelTol * std::abs(eps)) << c.model << " inverse at strain " << eps;
     }
   }
-  // Every built-in is in the table (but `tabulated`, whose law is a table: tabulated_test.cpp).
+  // Every built-in is in the table (but `tabulated`, whose law is a table: tabulated_test.cpp, and
+  // `formula`, whose expression takes s, not ln s, so that a strain of 1e-12 keeps only ~1e-4 of its
+  // digits: formula_scene_test.cpp).
   for (const std::string& name : kBuiltinMaterials) {
-    if (name == "tabulated") continue;
+    if (name == "tabulated" || name == "formula") continue;
     EXPECT_TRUE(std::any_of(cases.begin(), cases.end(), [&](const SmallStrainSeries& c) { return c.model == name; }))
         << name;
   }

@@ -22,6 +22,14 @@ ParameterSpec ParameterSpec::text(std::string name, std::string doc) {
   return p;
 }
 
+ParameterSpec ParameterSpec::numbers(std::string name, std::string doc) {
+  ParameterSpec p;
+  p.name = std::move(name);
+  p.doc = std::move(doc);
+  p.type = ParameterType::numbers;
+  return p;
+}
+
 ParameterSpec& ParameterSpec::with_dimension(Dimension d) {
   dimension = d;
   return *this;
@@ -96,6 +104,15 @@ const std::string& ParameterValues::text(const std::string& name) const {
   auto it = texts_.find(name);
   if (it == texts_.end()) throw std::out_of_range("material parameter '" + name + "' has no value");
   return it->second;
+}
+
+std::map<std::string, double> ParameterValues::numbers_under(const std::string& key) const {
+  std::map<std::string, double> out;
+  const std::string prefix = key + ".";
+  for (auto it = numbers_.lower_bound(prefix); it != numbers_.end() && it->first.compare(0, prefix.size(), prefix) == 0;
+       ++it)
+    out.emplace(it->first.substr(prefix.size()), it->second);
+  return out;
 }
 
 ParameterSpec rest_density_parameter() {

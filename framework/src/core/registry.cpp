@@ -206,6 +206,14 @@ std::shared_ptr<const Material> build_material(const MaterialInfo& info, const P
                         [&key](const ParameterSpec& p) { return p.name == key; });
   };
   for (const auto& entry : given.numbers()) {
+    const std::size_t dot = entry.first.find('.');
+    if (dot != std::string::npos) {  // an entry of a map of numbers (a formula's parameters): the material checks it
+      const auto map = declared(entry.first.substr(0, dot));
+      if (map == info.parameters.end() || map->type != ParameterType::numbers)
+        throw std::invalid_argument("'" + info.name + "' has no parameter '" + entry.first + "'");
+      values.set(entry.first, entry.second);
+      continue;
+    }
     const auto spec = declared(entry.first);
     if (spec == info.parameters.end())
       throw std::invalid_argument("'" + info.name + "' has no parameter '" + entry.first + "'");

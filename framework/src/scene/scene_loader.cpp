@@ -98,7 +98,14 @@ class SceneBuilder {
       std::string text;
       for (const ParameterSpec& spec : info.parameters) {
         const Checked* value = entry.find(spec.name);
-        if (value == nullptr) continue;  // optional and without default: the material decides
+        if (value == nullptr) continue;             // optional and without default: the material decides
+        if (spec.type == ParameterType::numbers) {  // a formula's parameters, "KEY.NAME"
+          for (const Checked& named : value->entries) {
+            values.set(spec.name + "." + named.name, named.number);
+            text += (text.empty() ? "" : ";") + spec.name + "." + named.name + "=" + shortest(named.number);
+          }
+          continue;
+        }
         if (spec.type == ParameterType::number)
           values.set(spec.name, value->number);
         else
@@ -110,6 +117,17 @@ class SceneBuilder {
       std::shared_ptr<const Material> material;
       try {
         material = build_material(info, values);  // hyperbolic and causal with these parameters
+      } catch (const ParameterError& e) {         // at the key it names: "pressure", "parameters.rho"
+        const Checked* at = &entry;
+        std::string_view rest = e.parameter();
+        while (at != nullptr && !rest.empty()) {
+          const std::size_t dot = rest.find('.');
+          const Checked* next = at->find(rest.substr(0, dot));
+          if (next == nullptr) break;
+          at = next;
+          rest = dot == std::string_view::npos ? std::string_view() : rest.substr(dot + 1);
+        }
+        checker_.fail(*at, "material '" + entry.name + "' (" + model + "): " + e.what());
       } catch (const std::invalid_argument& e) {
         checker_.fail(entry, "material '" + entry.name + "' (" + model + "): " + e.what());
       }

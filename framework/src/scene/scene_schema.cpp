@@ -58,6 +58,8 @@ Key Key::dictionary(std::string name, Key entry, std::string doc) {
 }
 
 Key Key::parameter(const ParameterSpec& spec) {
+  if (spec.type == ParameterType::numbers)  // a formula's parameters: names the scene chooses, each a number
+    return Key::dictionary(spec.name, Key::number("", "the value of the parameter of this name"), spec.doc);
   Key k = make(spec.name, spec.type == ParameterType::number ? Kind::number : Kind::text, spec.doc);
   k.dimension = spec.dimension;
   k.required = spec.required;

@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,7 +15,9 @@
 
 namespace rigidity {
 
-enum class ParameterType { number, text };
+/// number: one number; text: one string; numbers: a map from names the scene chooses to numbers
+/// (a formula's parameters), whose values ParameterValues holds as numbers named "KEY.NAME".
+enum class ParameterType { number, text, numbers };
 
 struct Bound {
   double value = 0.0;
@@ -37,6 +40,8 @@ struct ParameterSpec {
   ///       .with_dimension(Dimension::velocity).require().above(0.0).at_most(1.0)
   static ParameterSpec number(std::string name, std::string doc);
   static ParameterSpec text(std::string name, std::string doc);
+  /// A map of names to numbers, optional, empty by default; no dimension or range (the material checks).
+  static ParameterSpec numbers(std::string name, std::string doc);
   ParameterSpec& with_dimension(Dimension d);
   ParameterSpec& require();
   ParameterSpec& defaults_to(double v);
@@ -63,6 +68,8 @@ class ParameterValues {
   [[nodiscard]] bool has(const std::string& name) const { return numbers_.count(name) != 0 || texts_.count(name) != 0; }
   [[nodiscard]] const std::map<std::string, double>& numbers() const { return numbers_; }
   [[nodiscard]] const std::map<std::string, std::string>& texts() const { return texts_; }
+  /// The entries of a ParameterType::numbers parameter: name (without "KEY.") to value.
+  [[nodiscard]] std::map<std::string, double> numbers_under(const std::string& key) const;
 
   /// The directory a relative file name among the texts (a table) is taken from: the scene
   /// file's (the loader sets it); empty for the working directory.
@@ -79,6 +86,18 @@ class ParameterValues {
   std::map<std::string, std::string> texts_;
   std::string directory_;
   UnitSystem units_ = UnitSystem::natural;
+};
+
+/// A material's objection to one of its parameters, which the scene loader reports at that
+/// key (`parameter` is its dotted name under the material: "pressure", "parameters.rho").
+class ParameterError : public std::invalid_argument {
+ public:
+  ParameterError(std::string parameter, const std::string& message)
+      : std::invalid_argument(message), parameter_(std::move(parameter)) {}
+  [[nodiscard]] const std::string& parameter() const noexcept { return parameter_; }
+
+ private:
+  std::string parameter_;
 };
 
 /// The `rest_density` declaration every material shares (ρ00, default 1).
