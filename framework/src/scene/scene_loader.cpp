@@ -69,6 +69,13 @@ class SceneBuilder {
     read_bodies(root["bodies"], scene);
     scene.t_end = root["time"]["end"].number;
     read_solver(root["solver"], scene.solver);  // first: a linear piston ramp is stepped at its tolerance
+    if (!scene.solver.tolerance_given) {
+      bool degenerate = true;
+      for (const BodyDecl& body : scene.bodies)
+        for (const Segment& segment : body.segments)
+          degenerate = degenerate && scene.material_of(segment).linearly_degenerate();
+      if (!degenerate) scene.solver.tolerance = kNonlinearDefaultTolerance;
+    }
     read_boundary(root["boundaries"]["left"], true, scene, scene.left);
     read_boundary(root["boundaries"]["right"], false, scene, scene.right);
     read_outputs(root["outputs"], root["time"]["end"], scene);

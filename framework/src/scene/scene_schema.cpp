@@ -249,7 +249,9 @@ Key solver_key() {
               .defaults_to(std::string("characteristics")),
           Key::number("tolerance",
                       "characteristics: the error the run may make (docs/solvers.md, What the tolerance means); "
-                      "by default exact where waves are jumps, and fans as fine as 100000 steps allow")
+                      "by default 1e-12 where every body is linearly degenerate (exact: every wave a jump), "
+                      "and 1e-4 where a body is genuinely nonlinear (fans and what they cross resolved to about "
+                      "that, at a cost any scene can afford)")
               .above(0.0)
               .defaults_to(1.0e-12),
           Key::choice("resolution", {"tolerance", "auto"},

@@ -71,13 +71,19 @@ struct BoundaryDecl {
 };
 
 enum class SolverMethod { characteristics, finite_volume };
+
+/// The tolerance a scene with a genuinely nonlinear body runs at when it gives none: its fans
+/// and the waves they cross are resolved to about this (steps of 0.7 √tolerance in Ψ), at a
+/// cost every scene can afford; a scene of linearly degenerate bodies only stays exact.
+inline constexpr double kNonlinearDefaultTolerance = 1.0e-4;
 enum class FluxType { hll, exact };
 
 struct SolverDecl {
   SolverMethod method = SolverMethod::characteristics;
   double tolerance = 1.0e-12;  ///< characteristics: target accuracy (fan step in Ψ)
-  /// False for the default: exact where the physics allows (linearly degenerate waves), and
-  /// elsewhere the finest fans the step cap allows, with the error bound reported, not warned of.
+  /// False for the default: 1e-12 where every body's material is linearly degenerate (every
+  /// wave a jump: exact), else kNonlinearDefaultTolerance, which any scene can afford; the
+  /// error bound is reported, not warned of.
   bool tolerance_given = false;
   /// characteristics: resolve waves as coarsely as keeps the error bound near the tolerance
   /// (a pilot run at kPilotResolution × tolerance measures the bound), not to the tolerance.
