@@ -17,7 +17,8 @@ bool launched_by_mpi() {
 }
 
 std::unique_ptr<MpiSweep> open_mpi_sweep() {
-  // The module is installed beside librigidity (the build tree puts them together too).
+  // The module is installed beside librigidity_sweep, which holds sweep_case_dir (the build
+  // tree puts them together too).
   Dl_info library{};
   const auto* anchor = reinterpret_cast<const void*>(&sweep_case_dir);
   std::filesystem::path module(kMpiSweepModule);

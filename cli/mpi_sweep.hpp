@@ -34,7 +34,7 @@ class MpiSweep {
 /// The module's factory, exported as kMpiSweepFactory.
 using MpiSweepFactory = MpiSweep* (*)();
 inline constexpr const char* kMpiSweepFactory = "rigidity_mpi_sweep_open";
-/// The module's file name, looked for in the directory of librigidity.
+/// The module's file name, looked for in the directory of librigidity_sweep (beside librigidity).
 inline constexpr const char* kMpiSweepModule = "librigidity_mpi.so";
 
 /// Started by mpirun or srun (which set these), not by hand.

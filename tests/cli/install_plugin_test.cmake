@@ -33,12 +33,14 @@ set(prefix ${WORK_DIR}/prefix)
 set(example ${WORK_DIR}/example)
 file(REMOVE_RECURSE ${WORK_DIR})
 
-# 1. The package: executable, library, headers (framework's, solvers', generated) and CMake config.
+# 1. The package: executable, libraries, headers (framework's, solvers', sweeps', generated) and CMake config.
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
 file(GLOB_RECURSE config ${prefix}/*/rigidityConfig.cmake)
 file(GLOB_RECURSE library ${prefix}/*/librigidity.so)
+file(GLOB_RECURSE sweep_library ${prefix}/*/librigidity_sweep.so)
 foreach(path ${prefix}/bin/rigidity ${prefix}/include/rigidity/plugins.hpp ${prefix}/include/rigidity/config.hpp
-             ${prefix}/include/rigidity/solvers/solve.hpp "${config}" "${library}")
+             ${prefix}/include/rigidity/solvers/solve.hpp ${prefix}/include/rigidity/sweep.hpp "${config}" "${library}"
+             "${sweep_library}")
   if(NOT EXISTS "${path}")
     message(FATAL_ERROR "not installed: ${path}")
   endif()
