@@ -58,8 +58,7 @@ struct CascadeEvent {
 template <class Real>
 class LightCascade {
  public:
-  LightCascade(std::vector<CascadeBody> bodies, double wall_left, double wall_right)
-      : bodies_(std::move(bodies)) {
+  LightCascade(std::vector<CascadeBody> bodies, double wall_left, double wall_right) : bodies_(std::move(bodies)) {
     points_.push_back({Kind::wall, Real(wall_left), 0, 0});
     regions_.push_back(Region{});
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
@@ -123,7 +122,7 @@ class LightCascade {
       const Real phi = (r.jp + r.jm) / 2, psi = (r.jp - r.jm) / 2;
       const Real s = std::exp(-psi), g = std::cosh(phi), rho = Real(bodies_[r.body].rest_density);
       const Real pressure = rho / 2 * (1 / (s * s) - 1), w = rho + 2 * pressure;  // e = ρ + p
-      const Real labels = (x1 - x0) * g / s;  // dx/dX = s/γ
+      const Real labels = (x1 - x0) * g / s;                                      // dx/dX = s/γ
       p.x_right = x1;
       p.labels += labels;
       p.velocity_mean += labels * std::tanh(phi);
@@ -185,12 +184,16 @@ class LightCascade {
     };
     // The C− wave into L towards the star `s` (J+ is carried: s.jp == L.jp), or none.
     auto left_wave = [&](const Region& s) {
-      if (s.jm != L.jm) add(Kind::jump, -1, s);
-      else G.back() = s;
+      if (s.jm != L.jm)
+        add(Kind::jump, -1, s);
+      else
+        G.back() = s;
     };
     auto right_wave = [&](const Region& s) {
-      if (s.jp != R.jp) add(Kind::jump, 1, R);
-      else G.back() = s;
+      if (s.jp != R.jp)
+        add(Kind::jump, 1, R);
+      else
+        G.back() = s;
     };
     auto free_end = [&](const Region& s) { return std::tanh(s.phi()); };
 
@@ -228,8 +231,9 @@ class LightCascade {
       const Real dj = L.jp - R.jm;  // 2Ψ* if one material
       if (dj < 0) {                 // tension: a crack, or two bodies part
         const bool one_piece = L.body == R.body && L.piece == R.piece;
-        if (!had_vacuum) event(x, one_piece ? "cavitation" : "separation",
-                               L.body == R.body ? std::vector<int>{L.body} : std::vector<int>{L.body, R.body});
+        if (!had_vacuum)
+          event(x, one_piece ? "cavitation" : "separation",
+                L.body == R.body ? std::vector<int>{L.body} : std::vector<int>{L.body, R.body});
         const Region left = state(L, L.jp, L.jp);
         Region right = state(R, R.jm, R.jm);
         if (one_piece) {
@@ -249,8 +253,10 @@ class LightCascade {
         left_wave(s);
         Region r = R;
         r.piece = L.piece;
-        if (s.jp != R.jp) add(Kind::jump, 1, r);
-        else G.back() = s;
+        if (s.jp != R.jp)
+          add(Kind::jump, 1, r);
+        else
+          G.back() = s;
       } else {  // two bodies in contact: Ψ_L(p) + Ψ_R(p) = dj
         if (had_vacuum) event(x, "contact", {L.body, R.body});
         const Real a = 2 / Real(bodies_[L.body].rest_density), b = 2 / Real(bodies_[R.body].rest_density);
