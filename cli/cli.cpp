@@ -114,23 +114,33 @@ constexpr Command kCommands[] = {
      "                         with its parameters (two hooke materials at V = 0.5 and 0.9,\n"
      "                         say); --materials then picks among those names\n",
      compare_command},
-    {"plot", "rigidity plot RUN_DIR [--out DIR]", "draw a run's outputs as PNG images with gnuplot",
+    {"plot", "rigidity plot RUN_DIR [--out DIR] [--no-animation | --animation]",
+     "draw a run's outputs as PNG images with gnuplot",
      "Reads the outputs `rigidity run` wrote into RUN_DIR and draws, with gnuplot:\n"
-     "  xt.png         the x-t diagram of the fronts, coloured by kind (fronts.csv)\n"
-     "  probes.png     probe histories, one panel per quantity (probes.csv)\n"
+     "  xt.png         the x-t diagram of the fronts, coloured by kind (fronts.csv), from\n"
+     "                 xt_fronts.csv: the segments it can show (of two that draw the same\n"
+     "                 pixels, one; at most 300000), so that a run of millions of\n"
+     "                 segments draws in seconds\n"
+     "  probes.png     probe histories, one panel per quantity (probes.csv); a\n"
+     "                 front-tracking run's jumps as steps, the lab position x as a line\n"
      "  snapshots.png  snapshot profiles against the label X, one panel per quantity\n"
-     "                 (snapshots.csv); a front-tracking run's states as the staircases\n"
+     "                 (snapshots.csv), several bodies side by side (each shifted by its\n"
+     "                 initial position); a front-tracking run's states as the staircases\n"
      "                 they are, the lab position x as a continuous line\n"
      "  snapshots_lab.png  the same profiles against the lab position x, when the\n"
      "                 snapshots sample x (its data in snapshots_lab.csv)\n"
-     "  animation.gif  60 frames from fronts.csv: the x-t diagram drawn up to each\n"
-     "                 frame's time above, every front where it is at that time below\n"
-     "A plot whose CSV file is missing or empty is skipped. Each image is drawn by a gnuplot\n"
-     "script written beside it (xt.gp, ..., animation.gp), kept so that it can be edited\n"
-     "and rerun (cd DIR && gnuplot xt.gp). Without gnuplot on PATH: an error and exit 1.\n"
+     "  animation.gif  60 frames from xt_fronts.csv: the x-t diagram drawn up to each\n"
+     "                 frame's time above, every front where it is at that time below;\n"
+     "                 skipped (with a note) above 20000 segments to draw\n"
+     "SI axes of x and t are in prefixed units (mm, µs, ...). A plot whose CSV file is\n"
+     "missing or empty is skipped. Each image is drawn by a gnuplot script written beside\n"
+     "it (xt.gp, ..., animation.gp), kept so that it can be edited and rerun\n"
+     "(cd DIR && gnuplot xt.gp). Without gnuplot on PATH: an error and exit 1.\n"
      "\n"
      "options:\n"
-     "  --out DIR              where the images and scripts go (default RUN_DIR)\n",
+     "  --out DIR              where the images and scripts go (default RUN_DIR)\n"
+     "  --no-animation         do not draw animation.gif\n"
+     "  --animation            draw animation.gif however many the segments (slow)\n",
      plot_command},
     {"sweep", "rigidity sweep SWEEP.yaml [--out DIR] [-j N] [--quiet]",
      "run a parameter sweep of a scene into one table (sweep.csv)",

@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -295,53 +297,217 @@ std::vector<std::pair<std::string, KindStyle>> present_kinds(const Distinct& kin
   return present;
 }
 
-std::optional<std::string> xt_script(const fs::path& csv, const std::string& data, const RunInfo& run) {
-  Distinct kinds;
-  const std::optional<long> rows = for_each_row(csv, "t0,x0,t1,x1,kind,family", [&](const auto& f) {
-    if (f.size() == 6) kinds.add(f[4]);
+/// The fields of a line of fronts.csv (t0,x0,t1,x1,kind,family; numbers and a bare word),
+/// split without copying; false if the line has not six fields.
+bool front_fields(std::string_view line, std::array<std::string_view, 6>& fields) {
+  std::size_t start = 0;
+  for (std::size_t i = 0; i < 6; ++i) {
+    const std::size_t end = i == 5 ? line.size() : line.find(',', start);
+    if (end == std::string_view::npos) return false;
+    fields[i] = line.substr(start, end - start);
+    start = end + 1;
+  }
+  if (!fields[5].empty() && fields[5].back() == '\r') fields[5].remove_suffix(1);
+  return fields[5].find(',') == std::string_view::npos;
+}
+
+bool parse_double(std::string_view text, double& value) {
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() && end == text.data() + text.size() && std::isfinite(value);
+}
+
+/// Streams the data rows of fronts.csv: `row(t0, x0, t1, x1, kind)` for every well-formed
+/// line. Returns the number of such rows, or nullopt if the file does not exist.
+/// \throws CommandError (exit 2) on another header.
+std::optional<long> for_each_front(const fs::path& csv,
+                                   const std::function<void(const std::array<double, 4>&, std::string_view)>& row) {
+  std::ifstream in(csv, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::vector<char> buffer(1 << 20);
+  in.rdbuf()->pubsetbuf(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+  std::string line;
+  std::getline(in, line);
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  constexpr std::string_view kHeader = "t0,x0,t1,x1,kind,family";
+  if (line != kHeader)
+    throw CommandError(kExitInvalidInput,
+                       csv.string() + ": expected the header '" + std::string(kHeader) + "', found '" + line + "'");
+  long rows = 0;
+  std::array<std::string_view, 6> f;
+  std::array<double, 4> v{};
+  while (std::getline(in, line)) {
+    if (!front_fields(line, f)) continue;
+    if (!parse_double(f[0], v[0]) || !parse_double(f[1], v[1]) || !parse_double(f[2], v[2]) ||
+        !parse_double(f[3], v[3]))
+      continue;
+    row(v, f[4]);
+    ++rows;
+  }
+  return rows;
+}
+
+/// fronts.csv as drawn: the segments that can be seen at the x-t diagram's resolution,
+/// grouped by kind (one gnuplot data block per kind, in the order of `kinds`).
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct DecimatedFronts {
+  long rows = 0;  ///< segments in fronts.csv
+  long kept = 0;  ///< segments in the decimated file
+  std::vector<std::pair<std::string, KindStyle>> kinds;
+  double t_min = kInf, t_max = -kInf, x_min = kInf, x_max = -kInf;
+};
+
+/// The grid that decides what can be seen: about one cell per pixel of xt.png's plot area.
+/// Two segments of one kind whose ends fall in the same cells draw the same pixels, and so do
+/// two segments shorter than a cell in t and in x whose middles fall in one cell: only the
+/// first is kept. A front made of pieces shorter than a pixel keeps one piece per pixel.
+constexpr int kGridX = 800, kGridT = 560;
+/// At most this many segments go to gnuplot; above it, the grid is coarsened.
+constexpr long kMaxDrawnSegments = 300000;
+
+/// Writes the decimated fronts of `csv` to `out` (t0,x0,t1,x1 in blocks by kind, each block
+/// a gnuplot `index`). Two streaming passes (extents, then decimation); nullopt if fronts.csv
+/// is missing or has no segment.
+std::optional<DecimatedFronts> decimate_fronts(const fs::path& csv, const fs::path& out) {
+  DecimatedFronts d;
+  Distinct kind_names;
+  const std::optional<long> rows = for_each_front(csv, [&](const std::array<double, 4>& v, std::string_view kind) {
+    d.t_min = std::min({d.t_min, v[0], v[2]});
+    d.t_max = std::max({d.t_max, v[0], v[2]});
+    d.x_min = std::min({d.x_min, v[1], v[3]});
+    d.x_max = std::max({d.x_max, v[1], v[3]});
+    if (!kind_names.contains(std::string(kind))) kind_names.add(std::string(kind));
   });
   if (!rows || *rows == 0) return std::nullopt;
+  d.rows = *rows;
+  d.kinds = present_kinds(kind_names);
+  std::map<std::string, std::size_t, std::less<>> kind_index;
+  for (std::size_t k = 0; k < d.kinds.size(); ++k) kind_index[d.kinds[k].first] = k;
 
-  std::string out = script_header("The x-t diagram of " + run.scene + ": every front segment of fronts.csv " +
-                                      "(t0,x0,t1,x1,kind,family) drawn from (x0, t0) to (x1, t1), coloured by kind.",
-                                  "xt", 900, 650);
+  std::vector<std::vector<std::array<double, 4>>> kept(d.kinds.size());
+  for (int coarsening = 1;; coarsening *= 2) {
+    const long nx = std::max(1, kGridX / coarsening), nt = std::max(1, kGridT / coarsening);
+    const double sx = d.x_max > d.x_min ? static_cast<double>(nx) / (d.x_max - d.x_min) : 0.0;
+    const double st = d.t_max > d.t_min ? static_cast<double>(nt) / (d.t_max - d.t_min) : 0.0;
+    const auto cell = [&](double t, double x) -> std::uint64_t {
+      const long i = std::clamp(static_cast<long>((x - d.x_min) * sx), 0L, nx);
+      const long j = std::clamp(static_cast<long>((t - d.t_min) * st), 0L, nt);
+      return static_cast<std::uint64_t>(j * (nx + 1) + i);
+    };
+    std::unordered_set<std::uint64_t> seen;
+    for (auto& k : kept) k.clear();
+    long count = 0;
+    bool over = false;
+    std::string_view last_kind;
+    std::size_t last_index = 0;
+    for_each_front(csv, [&](const std::array<double, 4>& v, std::string_view kind) {
+      if (over) return;
+      if (kind != last_kind) {
+        last_index = kind_index.find(kind)->second;
+        last_kind = kind_index.find(kind)->first;
+      }
+      std::uint64_t a = cell(v[0], v[1]), b = cell(v[2], v[3]);
+      if (a > b) std::swap(a, b);
+      // Shorter than a cell in t and in x: it draws one pixel, that of its middle.
+      if (a != b && std::abs(v[3] - v[1]) * sx < 1.0 && std::abs(v[2] - v[0]) * st < 1.0)
+        a = b = cell(0.5 * (v[0] + v[2]), 0.5 * (v[1] + v[3]));
+      const std::uint64_t key = (static_cast<std::uint64_t>(last_index) << 42) ^ (a << 21) ^ b;
+      if (!seen.insert(key).second) return;
+      kept[last_index].push_back(v);
+      if (++count > kMaxDrawnSegments) over = true;
+    });
+    if (!over || (nx == 1 && nt == 1)) {
+      d.kept = count;
+      break;
+    }
+  }
+  std::ofstream file(out, std::ios::binary);
+  file << "# The segments of fronts.csv that xt.png can show (written by `rigidity plot`): t0,x0,t1,x1,\n"
+       << "# one block per kind (gnuplot index 0, 1, ...):";
+  for (const auto& [kind, style] : d.kinds) file << " " << kind;
+  file << "\n";
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    if (k > 0) file << "\n\n";
+    for (const auto& v : kept[k])
+      file << shortest(v[0]) << ',' << shortest(v[1]) << ',' << shortest(v[2]) << ',' << shortest(v[3]) << '\n';
+  }
+  file.close();
+  if (!file) throw CommandError(kExitInternal, "cannot write " + out.string());
+  return d;
+}
+
+/// An SI axis in a prefixed unit (µs, mm, ...) so that its tick labels stay short: the
+/// factor that takes the data to it and its label.
+struct ScaledAxis {
+  double factor = 1.0;
+  std::string label;
+};
+ScaledAxis scaled_axis(std::string_view name, Dimension dimension, UnitSystem units, double lo, double hi) {
+  ScaledAxis axis{1.0, axis_label(name, dimension, units)};
+  const std::string_view unit = unit_symbol(dimension, units);
+  const double magnitude = std::max(std::abs(lo), std::abs(hi));
+  if (units != UnitSystem::si || (unit != "m" && unit != "s") || !(magnitude > 0.0)) return axis;
+  static constexpr std::pair<int, std::string_view> kPrefixes[] = {{-12, "p"}, {-9, "n"}, {-6, "µ"}, {-3, "m"},
+                                                                   {0, ""},    {3, "k"},  {6, "M"},  {9, "G"}};
+  const int exponent = std::clamp(3 * static_cast<int>(std::floor(std::log10(magnitude) / 3.0)), -12, 9);
+  for (const auto& [e, prefix] : kPrefixes)
+    if (e == exponent) {
+      axis.factor = std::pow(10.0, -e);
+      axis.label = std::string(name) + " [" + std::string(prefix) + std::string(unit) + "]";
+    }
+  return axis;
+}
+
+/// The x-t diagram of the decimated fronts in `data`: the diagram fills the figure, its
+/// key in one small row below it.
+std::string xt_script(const DecimatedFronts& fronts, const std::string& data, const RunInfo& run) {
+  const ScaledAxis x = scaled_axis("x", Dimension::length, run.units, fronts.x_min, fronts.x_max);
+  const ScaledAxis t = scaled_axis("t", Dimension::time, run.units, fronts.t_min, fronts.t_max);
+  std::string out = script_header(
+      "The x-t diagram of " + run.scene + ": every front segment of fronts.csv (t0,x0,t1,x1,kind,family) " +
+          "drawn from (x0, t0) to (x1, t1), coloured by kind. " + std::to_string(fronts.rows) +
+          " segments; the data file holds the " + std::to_string(fronts.kept) +
+          " that can be seen at this resolution (of two that draw the same pixels, one).",
+      "xt", 900, 650);
   out += "set title " + gnuplot_quote(run.scene + ": fronts in the lab frame") + "\n";
-  out += "set xlabel " + gnuplot_quote(axis_label("x", Dimension::length, run.units)) + "\n";
-  out += "set ylabel " + gnuplot_quote(axis_label("t", Dimension::time, run.units)) + "\n";
-  out += "set key outside right\n";
+  out += "set xlabel " + gnuplot_quote(x.label) + "\n";
+  out += "set ylabel " + gnuplot_quote(t.label) + "\n";
+  out += "sx = " + shortest(x.factor) + "  # data to axis units\nst = " + shortest(t.factor) + "\n";
+  if (fronts.x_max > fronts.x_min)
+    out += "set xrange [" + shortest(fronts.x_min * x.factor) + ":" + shortest(fronts.x_max * x.factor) + "]\n";
+  if (fronts.t_max > fronts.t_min)
+    out += "set yrange [" + shortest(fronts.t_min * t.factor) + ":" + shortest(fronts.t_max * t.factor) + "]\n";
+  out += "set xtics scale 0.5\nset ytics scale 0.5\n";
+  out += "set key below horizontal center font ',9' samplen 2 spacing 1 width -2\n";
   out += "data = " + gnuplot_quote(data) + "\n";
-  const std::vector<std::pair<std::string, KindStyle>> present = present_kinds(kinds);
   std::vector<std::string> elements;
-  for (const auto& [kind, style] : present)
-    elements.push_back("data skip 1 using (strcol(5) eq " + gnuplot_quote(kind) +
-                       " ? $2 : NaN):1:($4-$2):($3-$1) with vectors nohead lw " + std::string(style.width) +
-                       " lc rgb '" + std::string(style.colour) + "' title " + gnuplot_quote(std::string(style.legend)));
+  for (std::size_t k = 0; k < fronts.kinds.size(); ++k) {
+    const KindStyle& style = fronts.kinds[k].second;
+    elements.push_back("data index " + std::to_string(k) +
+                       " using ($2*sx):($1*st):(($4-$2)*sx):(($3-$1)*st) with vectors nohead lw " +
+                       std::string(style.width) + " lc rgb '" + std::string(style.colour) + "' title " +
+                       gnuplot_quote(std::string(style.legend)));
+  }
   return out + join_plot(elements);
 }
 
 /// Frames of animation.gif.
 constexpr int kAnimationFrames = 60;
-constexpr double kInf = std::numeric_limits<double>::infinity();
+/// Above this many drawn segments the animation is skipped unless asked for (--animation):
+/// 60 frames of it would take minutes.
+constexpr long kAnimationMaxSegments = 20000;
 
-/// The run as an animation (animation.gif), from fronts.csv alone: above, the x-t diagram
-/// drawn up to the frame's time; below, the bodies at that time, each front where it is
-/// then (body ends in black, waves coloured by kind), so the fronts are seen running
+/// The run as an animation (animation.gif), from the decimated fronts alone: above, the x-t
+/// diagram drawn up to the frame's time; below, the bodies at that time, each front where it
+/// is then (body ends in black, waves coloured by kind), so the fronts are seen running
 /// through the bars, reflecting and letting go. For teaching the paper's scene.
-std::optional<std::string> animation_script(const fs::path& csv, const std::string& data, const RunInfo& run) {
-  Distinct kinds;
-  double t_max = 0.0, x_min = kInf, x_max = -kInf;
-  const std::optional<long> rows = for_each_row(csv, "t0,x0,t1,x1,kind,family", [&](const auto& f) {
-    if (f.size() != 6) return;
-    kinds.add(f[4]);
-    const auto t1 = parse_number(f[2]), x0 = parse_number(f[1]), x1 = parse_number(f[3]);
-    if (t1) t_max = std::max(t_max, *t1);
-    for (const auto& x : {x0, x1})
-      if (x) x_min = std::min(x_min, *x), x_max = std::max(x_max, *x);
-  });
-  if (!rows || *rows == 0 || !(t_max > 0.0) || !(x_max > x_min)) return std::nullopt;
+std::optional<std::string> animation_script(const DecimatedFronts& fronts, const std::string& data,
+                                            const RunInfo& run) {
+  const double t_max = fronts.t_max, x_min = fronts.x_min, x_max = fronts.x_max;
+  if (!(t_max > 0.0) || !(x_max > x_min)) return std::nullopt;
   const double margin = 0.05 * (x_max - x_min);
-  std::string out = gnuplot_comment("An animation of " + run.scene +
-                                    " from fronts.csv (t0,x0,t1,x1,kind,family): " + std::to_string(kAnimationFrames) +
+  std::string out = gnuplot_comment("An animation of " + run.scene + " from the fronts of " + data +
+                                    " (t0,x0,t1,x1, one block per kind): " + std::to_string(kAnimationFrames) +
                                     " frames; above, the x-t diagram up to the frame's time; below, every front "
                                     "where it is at that time.");
   out += "# Written by `rigidity plot`; edit and rerun from this directory: gnuplot animation.gp\n";
@@ -356,22 +522,21 @@ std::optional<std::string> animation_script(const fs::path& csv, const std::stri
   out += "frac(t0, t1) = t1 > t0 ? (T - t0)/(t1 - t0) : 1\n";
   out += "upto(t0, t1) = T < t0 ? NaN : (T > t1 ? 1 : frac(t0, t1))\n";
   out += "at(t0, x0, t1, x1) = (T >= t0 && T <= t1) ? x0 + (x1 - x0)*frac(t0, t1) : NaN\n";
-  const std::vector<std::pair<std::string, KindStyle>> present = present_kinds(kinds);
   std::vector<std::string> diagram, strip;
-  for (const auto& [kind, style] : present) {
-    const std::string is_kind = "strcol(5) eq " + gnuplot_quote(kind);
-    diagram.push_back("data skip 1 using ((" + is_kind +
-                      ") ? $2 : NaN):1:(($4-$2)*upto($1,$3)):(($3-$1)*upto($1,$3)) " + "with vectors nohead lw " +
+  for (std::size_t k = 0; k < fronts.kinds.size(); ++k) {
+    const auto& [kind, style] = fronts.kinds[k];
+    const std::string block = "data index " + std::to_string(k);
+    diagram.push_back(block + " using 2:1:(($4-$2)*upto($1,$3)):(($3-$1)*upto($1,$3)) with vectors nohead lw " +
                       std::string(style.width) + " lc rgb '" + std::string(style.colour) + "' title " +
                       gnuplot_quote(std::string(style.legend)));
-    strip.push_back(
-        "data skip 1 using ((" + is_kind + ") ? at($1,$2,$3,$4) : NaN):(-1):(0):(2) with vectors nohead lw " +
-        std::string(kind == "boundary" ? "3" : style.width) + " lc rgb '" + std::string(style.colour) + "' notitle");
+    strip.push_back(block + " using (at($1,$2,$3,$4)):(-1):(0):(2) with vectors nohead lw " +
+                    std::string(kind == "boundary" ? "3" : style.width) + " lc rgb '" + std::string(style.colour) +
+                    "' notitle");
   }
   out += "do for [frame = 0:" + std::to_string(kAnimationFrames - 1) + "] {\n";
   out += "  T = t_max * frame / " + std::to_string(kAnimationFrames - 1) + ".0\n";
   out += "  set multiplot layout 2,1 title sprintf(" + gnuplot_quote(run.scene + ": t = %.4g") + ", T)\n";
-  out += "  set size 1,0.68\n  set origin 0,0.3\n  set key top left opaque box\n";
+  out += "  set size 1,0.68\n  set origin 0,0.3\n  set key top left opaque box font ',8'\n";
   out += "  set ylabel " + gnuplot_quote(axis_label("t", Dimension::time, run.units)) + "\n";
   out += "  set yrange [0:t_max]\n";
   out += "  set arrow 1 from graph 0, first T to graph 1, first T nohead lc rgb '#888888' dt 2\n";
@@ -408,10 +573,14 @@ std::optional<std::string> probes_script(const fs::path& csv, const std::string&
   for (const auto& [quantity, probes] : probes_of) {
     out += "set title " + gnuplot_quote(quantity) + "\n";
     out += "set ylabel " + gnuplot_quote(quantity_label(quantity, run.units)) + "\n";
+    // Front tracking's states hold between jumps: each jump drawn as a step at the first
+    // sample past it, not as a ramp between samples; the lab position x is continuous.
+    const std::string style = run.piecewise_constant && quantity != "x" ? "steps" : "lines";
     std::vector<std::string> elements;
     for (const std::string& probe : probes.values())
       elements.push_back("data skip 1 using 1:(strcol(2) eq " + gnuplot_quote(probe) + " && strcol(3) eq " +
-                         gnuplot_quote(quantity) + " ? $4 : NaN) with lines lw 2 title " + gnuplot_quote(probe));
+                         gnuplot_quote(quantity) + " ? $4 : NaN) with " + style + " lw 2 title " +
+                         gnuplot_quote(probe));
     out += join_plot(elements);
   }
   return out + "unset multiplot\n";
@@ -443,6 +612,32 @@ bool write_lab_profiles(const fs::path& csv, const fs::path& out) {
   return true;
 }
 
+/// The initial lab position of each body, from the resolved scene the run wrote
+/// (resolved_scene.yaml: `bodies:` as a block list of `- name:` with `position:`).
+std::map<std::string, double> body_positions(const fs::path& run_dir) {
+  std::map<std::string, double> positions;
+  std::ifstream in(run_dir / "resolved_scene.yaml", std::ios::binary);
+  std::string line, body;
+  bool in_bodies = false;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (!line.empty() && line[0] != ' ' && line[0] != '-') {
+      in_bodies = line == "bodies:";
+      continue;
+    }
+    if (!in_bodies) continue;
+    const std::size_t name = line.find("- name: ");
+    if (name != std::string::npos && line.find_first_not_of(' ') == name) {
+      body = line.substr(name + 8);
+      continue;
+    }
+    const std::size_t position = line.find("position: ");
+    if (!body.empty() && position != std::string::npos && line.find_first_not_of(' ') == position)
+      if (const auto x = parse_number(line.substr(position + 10))) positions[body] = *x;
+  }
+  return positions;
+}
+
 std::optional<std::string> profiles_script(const fs::path& csv, const std::string& data, const RunInfo& run, bool lab) {
   const std::string position = lab ? "x" : "X";
   Distinct times, bodies, quantities;
@@ -466,8 +661,17 @@ std::optional<std::string> profiles_script(const fs::path& csv, const std::strin
   out += "unset colorbox\n";
   out += "set multiplot layout " + std::to_string(panel_rows) + "," + std::to_string(panel_columns) + " title " +
          gnuplot_quote(run.scene + (lab ? ": snapshots in the lab frame" : ": snapshots")) + "\n";
+  // Several bodies against their labels: each body shifted by its initial position, so that
+  // they lie side by side as in the scene rather than over one another from X = 0.
+  std::map<std::string, double> offsets;
+  if (!lab && bodies.values().size() > 1) offsets = body_positions(csv.parent_path());
+  const bool side_by_side = !offsets.empty();
   out += "set xlabel " +
-         gnuplot_quote(axis_label(lab ? "x (lab position)" : "X (label)", Dimension::length, run.units)) + "\n";
+         gnuplot_quote(axis_label(lab            ? "x (lab position)"
+                                  : side_by_side ? "X + the body's initial position (label, bodies side by side)"
+                                                 : "X (label)",
+                                  Dimension::length, run.units)) +
+         "\n";
   out += "set key outside right top\n";
   // Front tracking's states are staircases: drawn as steps (each jump at the first sample
   // past it), not as ramps between samples; the lab position x, continuous in X, and
@@ -489,9 +693,13 @@ std::optional<std::string> profiles_script(const fs::path& csv, const std::strin
         std::string title = "t = " + t + (bodies.values().size() > 1 ? " " + body : std::string());
         std::array<char, 32> frac{};
         std::snprintf(frac.data(), frac.size(), "%.4f", fraction);
-        elements.push_back("data skip 1 using 3:(strcol(1) eq " + gnuplot_quote(t) + " && strcol(2) eq " +
-                           gnuplot_quote(body) + " && strcol(4) eq " + gnuplot_quote(quantity) + " ? $5 : NaN) with " +
-                           style + " lw 2 dt " + std::to_string(b % 5 + 1) + " lc palette frac " + frac.data() +
+        const auto offset = offsets.find(body);
+        const std::string x_column =
+            offset == offsets.end() || offset->second == 0.0 ? "3" : "($3+" + shortest(offset->second) + ")";
+        elements.push_back("data skip 1 using " + x_column + ":(strcol(1) eq " + gnuplot_quote(t) +
+                           " && strcol(2) eq " + gnuplot_quote(body) + " && strcol(4) eq " + gnuplot_quote(quantity) +
+                           " ? $5 : NaN) with " + style + " lw 2 dt " + std::to_string(b % 5 + 1) +
+                           " lc palette frac " + frac.data() +
                            (titled ? " title " + gnuplot_quote(title) : std::string(" notitle")));
       }
     }
@@ -515,7 +723,7 @@ std::string path_from(const fs::path& base, const fs::path& target) {
 }  // namespace
 
 int plot_command(std::span<const std::string> args, std::ostream& out) {
-  static constexpr OptionSpec kOptions[] = {{"--out", true}};
+  static constexpr OptionSpec kOptions[] = {{"--out", true}, {"--no-animation", false}, {"--animation", false}};
   const Arguments parsed = parse_arguments("plot", args, kOptions);
   if (parsed.help) {
     out << help("plot");
@@ -546,16 +754,25 @@ int plot_command(std::span<const std::string> args, std::ostream& out) {
     throw CommandError(kExitInvalidInput, "cannot create the output directory " + out_dir.string());
 
   const RunInfo run = read_run_info(run_dir);
+  std::vector<std::string> drawn;
+  bool animated = false;
+  // The x-t diagram, from fronts.csv decimated to what it can show (xt_fronts.csv).
+  const fs::path fronts = run_dir / "fronts.csv";
+  const fs::path fronts_data = out_dir / "xt_fronts.csv";
+  const std::optional<DecimatedFronts> decimated =
+      fs::exists(fronts, error) ? decimate_fronts(fronts, fronts_data) : std::nullopt;
+  if (decimated) {
+    render_gnuplot(gnuplot, out_dir, "xt", xt_script(*decimated, "xt_fronts.csv", run));
+    drawn.emplace_back("xt");
+  } else {
+    out << "skipped xt.png: " << fronts.string() << (fs::exists(fronts, error) ? " has no data" : " not found") << "\n";
+  }
   struct Plot {
     std::string_view name;
     std::string_view csv;
     std::optional<std::string> (*script)(const fs::path&, const std::string&, const RunInfo&);
   };
-  constexpr Plot kPlots[] = {{"xt", "fronts.csv", xt_script},
-                             {"probes", "probes.csv", probes_script},
-                             {"snapshots", "snapshots.csv", snapshots_script}};
-  std::vector<std::string> drawn;
-  bool animated = false;
+  constexpr Plot kPlots[] = {{"probes", "probes.csv", probes_script}, {"snapshots", "snapshots.csv", snapshots_script}};
   for (const Plot& plot : kPlots) {
     const fs::path csv = run_dir / plot.csv;
     const std::optional<std::string> script = plot.script(csv, path_from(out_dir, csv), run);
@@ -576,11 +793,16 @@ int plot_command(std::span<const std::string> args, std::ostream& out) {
       drawn.push_back("snapshots_lab");
     }
   }
-  // The animation (a GIF of the x-t diagram growing, with the bodies below).
-  const fs::path fronts = run_dir / "fronts.csv";
-  if (const std::optional<std::string> script = animation_script(fronts, path_from(out_dir, fronts), run)) {
-    render_gnuplot(gnuplot, out_dir, "animation", *script, "gif");
-    animated = true;
+  // The animation (a GIF of the x-t diagram growing, with the bodies below): skipped when
+  // asked, and by default when the fronts are too many to animate within seconds.
+  if (decimated && !parsed.has("--no-animation")) {
+    if (decimated->kept > kAnimationMaxSegments && !parsed.has("--animation")) {
+      out << "skipped animation.gif: " << decimated->kept << " front segments to draw (more than "
+          << kAnimationMaxSegments << " take minutes to animate; --animation draws it anyway)\n";
+    } else if (const std::optional<std::string> script = animation_script(*decimated, "xt_fronts.csv", run)) {
+      render_gnuplot(gnuplot, out_dir, "animation", *script, "gif");
+      animated = true;
+    }
   }
   if (drawn.empty()) {
     out << "nothing to plot in " << run_dir.string() << "\n";

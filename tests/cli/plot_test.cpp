@@ -2,7 +2,10 @@
 // a missing or failing gnuplot reported with exit 1.
 #include <sys/stat.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdlib>
+#include <fstream>
 #include <optional>
 #include <string>
 
@@ -42,7 +45,11 @@ TEST_F(PlotTest, DrawsTheXtDiagramProbesAndSnapshots) {
   EXPECT_TRUE(contains(animation, "set terminal gif animate"));
   // The fronts of the paper's impact are contacts (linearly degenerate) and body ends.
   const std::string xt = read_text(dir() / "run" / "xt.gp");
-  EXPECT_TRUE(contains(xt, "strcol(5) eq 'contact'"));
+  EXPECT_TRUE(contains(xt, "data = 'xt_fronts.csv'"));
+  EXPECT_TRUE(contains(xt, "data index 0 using"));
+  EXPECT_TRUE(contains(xt, "set key below"));  // the key does not eat the diagram
+  EXPECT_TRUE(
+      contains(read_text(dir() / "run" / "xt_fronts.csv"), "one block per kind (gnuplot index 0, 1, ...): contact"));
   EXPECT_TRUE(contains(xt, "title 'jump at c_s (linearly degenerate: compression or release)'"));
   EXPECT_TRUE(contains(xt, "title 'body end'"));
   EXPECT_FALSE(contains(xt, "title 'shock'"));  // only the kinds present are listed
@@ -62,6 +69,51 @@ TEST_F(PlotTest, DrawsTheXtDiagramProbesAndSnapshots) {
   const std::string probes = read_text(dir() / "run" / "probes.gp");
   EXPECT_TRUE(contains(probes, "set multiplot layout 2,2"));
   EXPECT_TRUE(contains(probes, "strcol(2) eq 'rear' && strcol(3) eq 'x'"));
+  // Exact jumps as steps, the continuous lab position as a line.
+  EXPECT_TRUE(contains(probes, "strcol(3) eq 'p' ? $4 : NaN) with steps")) << probes;
+  EXPECT_TRUE(contains(probes, "strcol(3) eq 'x' ? $4 : NaN) with lines")) << probes;
+}
+
+TEST_F(PlotTest, SkipsTheAnimationWhenAsked) {
+  if (!gnuplot_installed()) GTEST_SKIP() << "gnuplot is not installed";
+  const CliOutcome r = rigidity("plot run --no-animation");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_TRUE(is_png(dir() / "run" / "xt.png"));
+  EXPECT_FALSE(fs::exists(dir() / "run" / "animation.gif"));
+  EXPECT_FALSE(contains(r.out, "animation"));
+}
+
+TEST_F(CliTest, PlotDecimatesMillionsOfFrontsToWhatCanBeSeen) {
+  if (!gnuplot_installed()) GTEST_SKIP() << "gnuplot is not installed";
+  // 100 fronts of 1500 pieces each, every piece shorter than a pixel in t and in x, plus every
+  // piece once more: 300 000 segments, of which a 800 x 560 grid can show far fewer.
+  fs::create_directories(dir() / "big");
+  {
+    std::ofstream csv(dir() / "big" / "fronts.csv", std::ios::binary);
+    csv << "t0,x0,t1,x1,kind,family\n";
+    for (int copy = 0; copy < 2; ++copy)
+      for (int front = 0; front < 100; ++front)
+        for (int piece = 0; piece < 1500; ++piece) {
+          const double t0 = piece / 1500.0, t1 = (piece + 1) / 1500.0;
+          csv << t0 << ',' << front * 0.02 + 0.3 * t0 << ',' << t1 << ',' << front * 0.02 + 0.3 * t1
+              << (front % 2 == 0 ? ",shock,1\n" : ",rarefaction,-1\n");
+        }
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const CliOutcome r = rigidity("plot big");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_LT(seconds, 20.0);
+  EXPECT_TRUE(is_png(dir() / "big" / "xt.png"));
+  // What gnuplot draws: at most one segment per cell a front crosses (560 in t, about 70 in x).
+  const std::string data = read_text(dir() / "big" / "xt_fronts.csv");
+  const long rows = std::count(data.begin(), data.end(), '\n') - 2;  // two comment lines
+  EXPECT_GT(rows, 100 * 500);                                        // every front still drawn whole
+  EXPECT_LT(rows, 100 * 800);
+  EXPECT_TRUE(contains(read_text(dir() / "big" / "xt.gp"), "300000 segments"));
+  // So many segments are not animated unless asked for.
+  EXPECT_TRUE(contains(r.out, "skipped animation.gif")) << r.out;
+  EXPECT_FALSE(fs::exists(dir() / "big" / "animation.gif"));
 }
 
 TEST_F(PlotTest, WritesElsewhereWithScriptsThatRerun) {
@@ -70,7 +122,8 @@ TEST_F(PlotTest, WritesElsewhereWithScriptsThatRerun) {
   ASSERT_EQ(r.exit_status, 0) << r.err;
   EXPECT_TRUE(is_png(dir() / "pictures" / "xt.png"));
   EXPECT_FALSE(fs::exists(dir() / "run" / "xt.png"));
-  EXPECT_TRUE(contains(read_text(dir() / "pictures" / "xt.gp"), "'../run/fronts.csv'"));
+  EXPECT_TRUE(fs::is_regular_file(dir() / "pictures" / "xt_fronts.csv"));
+  EXPECT_TRUE(contains(read_text(dir() / "pictures" / "probes.gp"), "'../run/probes.csv'"));
   // The kept script draws the same picture when rerun by hand in its directory.
   fs::remove(dir() / "pictures" / "xt.png");
   const std::string rerun = "cd " + shell_quote((dir() / "pictures").string()) + " && gnuplot xt.gp 2>&1";
@@ -141,6 +194,7 @@ TEST_F(CliTest, PlotHasHelp) {
   // Every image it draws.
   for (const char* image : {"xt.png", "probes.png", "snapshots.png", "snapshots_lab.png", "animation.gif"})
     EXPECT_TRUE(contains(r.out, image)) << image;
+  EXPECT_TRUE(contains(r.out, "--no-animation"));
   EXPECT_TRUE(contains(rigidity("--help").out, "rigidity plot"));
 }
 
