@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Energy and momentum books of random scenes (issue 32, item 4): runs each seed of a random
 # scene generator at a tolerance, with a time-out, and lists the runs whose books do not
-# close: energy_final + energy_dissipated - energy_initial - wall_work - energy_droplets
+# close: energy_final + energy_dissipated - energy_initial - wall_work - energy_droplets - energy_waves
 # (positive: energy created, or dissipation booked beyond what the bodies lost), the same for
 # momentum, and a negative energy_dissipated. The energy residual is set against the run's
 # error bound times sqrt(rest energy x (kinetic + internal energy at t = 0 + wall work)), the
@@ -33,8 +33,10 @@ for line in open(os.path.join(out, "codes.txt")):
     c = d["conservation"]
     rest = sum(b["rest_energy"] for b in d["bodies"])
     motion = c["energy_initial"] - rest + max(c["wall_work"], 0.0)
-    e = c["energy_final"] + c["energy_dissipated"] - c["energy_initial"] - c["wall_work"] - c.get("energy_droplets", 0.0)
-    p = c["momentum_final"] - c["momentum_initial"] - c["wall_impulse"] - c.get("momentum_droplets", 0.0)
+    e = (c["energy_final"] + c["energy_dissipated"] - c["energy_initial"] - c["wall_work"] - c.get("energy_droplets", 0.0)
+         - c.get("energy_waves", 0.0))
+    p = (c["momentum_final"] - c["momentum_initial"] - c["wall_impulse"] - c.get("momentum_droplets", 0.0)
+         - c.get("momentum_waves", 0.0))
     bound = d["solver"].get("error_bound", float("nan"))
     allowed = bound * math.sqrt(rest * max(motion, 0.0)) + 1e-12 * rest
     rows.append((int(seed), d["status"], e, p, c["energy_dissipated"], bound, allowed, motion, bound * rest + 1e-12 * rest))
