@@ -52,7 +52,15 @@ void Tracker::validate(double t) const {
         fail("node " + std::to_string(next) + " at label " + number(X_next) + " is left of node " + std::to_string(n) +
              " at " + number(X));
     }
-    if (!is_light(index)) continue;
+    if (!is_light(index)) {
+      // Every meeting due before the end is scheduled: a node whose next meeting is missing
+      // from the queue would pass through its neighbour.
+      for (int n = piece.left_end; n != piece.right_end; n = nodes_[n].next)
+        if (meeting_time(n) < kInf && !meetings_.contains(n))
+          fail("node " + std::to_string(n) + " meets node " + std::to_string(nodes_[n].next) + " at t = " +
+               number(meeting_time(n)) + " with no meeting scheduled");
+      continue;
+    }
     const LightPiece& lp = light_[p];
     for (const int family : {+1, -1}) {
       const std::deque<LightFront>& queue = family > 0 ? lp.plus : lp.minus;
