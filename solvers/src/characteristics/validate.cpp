@@ -57,8 +57,8 @@ void Tracker::validate(double t) const {
       // from the queue would pass through its neighbour.
       for (int n = piece.left_end; n != piece.right_end; n = nodes_[n].next)
         if (meeting_time(n) < kInf && !meetings_.contains(n))
-          fail("node " + std::to_string(n) + " meets node " + std::to_string(nodes_[n].next) + " at t = " +
-               number(meeting_time(n)) + " with no meeting scheduled");
+          fail("node " + std::to_string(n) + " meets node " + std::to_string(nodes_[n].next) +
+               " at t = " + number(meeting_time(n)) + " with no meeting scheduled");
       continue;
     }
     const LightPiece& lp = light_[p];
