@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Energy and momentum books of random scenes (issue 32, item 4): runs each seed of a random
+# Energy and momentum books of random scenes: runs each seed of a random
 # scene generator at a tolerance, with a time-out, and lists the runs whose books do not
 # close: energy_final + energy_dissipated - energy_initial - wall_work - energy_droplets - energy_waves
 # (positive: energy created, or dissipation booked beyond what the bodies lost), the same for

@@ -1,8 +1,8 @@
 #pragma once
-/// An independent reference for a cascade of `rigid_fluid` pieces between two walls (issue 32,
-/// item 2): bars of a material with e = ρ00 + p in compression (c_s = c = 1, SPEC §2) that
-/// carries no tension, followed event by event in closed form. Written from the laws alone;
-/// it shares no code with solvers/ (nor with exact/riemann.hpp: every wave here is a jump).
+/// An independent reference for a cascade of `rigid_fluid` pieces between two walls: bars
+/// of a material with e = ρ00 + p in compression (c_s = c = 1) that carries no tension,
+/// followed event by event in closed form. Written from the laws alone; it shares no code
+/// with solvers/ (nor with exact/riemann.hpp: every wave here is a jump).
 ///
 /// With c_s = 1 every characteristic runs at exactly ±1 in the lab, whatever the state, so in
 /// each piece the Riemann invariants J± = φ ± Ψ (Ψ = −ln s) are carried unchanged along

@@ -1,6 +1,6 @@
 // A run that meets a state with no classical solution mid-way (a bar crushed to zero length)
 // stops there: solve() throws InadmissibleStop with the run up to that instant, its books
-// closed there and its verdict judged against its error bound (issue 32).
+// closed there and its verdict judged against its error bound.
 #include <gtest/gtest.h>
 
 #include <cmath>

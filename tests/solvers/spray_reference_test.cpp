@@ -14,8 +14,8 @@
 //   3200   4.9e-4                            1.346072                        whole, x_right 1.3240
 // so the bodies' mean velocities (their momenta) and the instant of the first crack converge,
 // at about N^-0.55 and N^-0.75, while a cracked body's extent does not: the scheme reports each
-// body whole, its cavitated cells stretched across the gap (x_right stays 0.10 off at every N,
-// as issue 32 found), and counts no pieces.
+// body whole, its cavitated cells stretched across the gap (x_right stays 0.10 off at every N),
+// and counts no pieces.
 #include <gtest/gtest.h>
 
 #include <algorithm>
