@@ -12,12 +12,6 @@
 namespace rigidity {
 namespace {
 
-double number_of(const RunResult& r, const std::string& name) {
-  for (const auto& [key, value] : r.solver_numbers)
-    if (key == name) return value;
-  return std::nan("");
-}
-
 long cavitations(const RunResult& r) {
   long n = 0;
   for (const RunEvent& e : r.events) n += e.kind == "cavitation" ? 1 : 0;
@@ -40,7 +34,7 @@ time: {end: 1.0}
 )",
                                                 "<test>"));
     EXPECT_EQ(cavitations(r), 1);
-    EXPECT_TRUE(std::isnan(number_of(r, "qualitative_from")));
+    EXPECT_TRUE(std::isnan(r.solver_number("qualitative_from")));
     for (const std::string& w : r.warnings) EXPECT_EQ(w.find("qualitative"), std::string::npos) << w;
   }
 }
@@ -67,11 +61,11 @@ time: {end: 5.0}
   };
   const RunResult coarse = run(1e-3), fine = run(1e-4);
   for (const RunResult* r : {&coarse, &fine}) {
-    const double from = number_of(*r, "qualitative_from");
+    const double from = r->solver_number("qualitative_from");
     ASSERT_FALSE(std::isnan(from));
     EXPECT_GT(from, 0.0);
     EXPECT_LT(from, 5.0);
-    EXPECT_GE(number_of(*r, "cracks_by_smooth_waves"), 1.0);
+    EXPECT_GE(r->solver_number("cracks_by_smooth_waves"), 1.0);
     bool said = false;
     for (const std::string& w : r->warnings)
       said = said || w.find("body 'b0' cracked where the steps") != std::string::npos;

@@ -26,16 +26,20 @@ void Tracker::account_front_end(int id, double t) {
   const Region& left = nodes_[n.prev].right;
   const Region& right = n.right;
   if (left.material == nullptr || right.material == nullptr) return;
-  const auto flux = [](const Region& r) { return r.material->pressure(r.state.stretch) * std::tanh(r.state.rapidity); };
+  if (!jump && right.material->linearly_degenerate()) return;  // moves at its characteristic speed: exact
+  // [F] with F = p v, the energy flux per unit label.
+  const auto jump_F = [&](double p_left, double p_right) {
+    return p_right * std::tanh(right.state.rapidity) - p_left * std::tanh(left.state.rapidity);
+  };
   if (!jump) {
-    if (right.material->linearly_degenerate()) return;  // moves at its characteristic speed: exact
+    const double p_left = left.material->pressure(left.state.stretch);
+    const double p_right = right.material->pressure(right.state.stretch);
     // A step of a smooth wave: what its label-jump speed m misses of m[E] = [F] and
     // m[P] = [p], differences of O(1) numbers that are third order in its strength.
     const double dE = energy_density(*right.material, right.state) - energy_density(*left.material, left.state);
     const double dP = momentum_density(*right.material, right.state) - momentum_density(*left.material, left.state);
-    const double dp = right.material->pressure(right.state.stretch) - left.material->pressure(left.state.stretch);
-    waves_energy_ -= (n.dXdt * dE - (flux(right) - flux(left))) * (t - n.t0);
-    waves_momentum_ -= (n.dXdt * dP - dp) * (t - n.t0);
+    waves_energy_ -= (n.dXdt * dE - jump_F(p_left, p_right)) * (t - n.t0);
+    waves_momentum_ -= (n.dXdt * dP - (p_right - p_left)) * (t - n.t0);
     return;
   }
   // Energy removed per unit time at a front moving at m = dX/dt: m[E] − [F], with E the
@@ -49,7 +53,8 @@ void Tracker::account_front_end(int id, double t) {
   double rate = from_jump.value;
   if (!from_jump.ok()) {
     const double jump_E = energy_density(*right.material, right.state) - energy_density(*left.material, left.state);
-    rate = n.dXdt * jump_E - (flux(right) - flux(left));
+    rate = n.dXdt * jump_E -
+           jump_F(left.material->pressure(left.state.stretch), right.material->pressure(right.state.stretch));
   }
   dissipated_ += rate * (t - n.t0);
 }
@@ -94,9 +99,8 @@ void Tracker::region_at(int n, double X, double t, Region& region, double& x) co
   if (unsplit(n)) {
     // Right of an unsplit fan's wedge: the region starts at the fan's fastest characteristic.
     const CentredFan& f = fans_[node.fan];
-    const double speed = std::max(f.speed_a, f.speed_b);
     const double x_edge = f.x0 + characteristic_speeds(*region.material, region.state, f.family).lab * (t - f.t0);
-    x = x_edge + (X - (f.X0 + speed * (t - f.t0))) * label_density(region.state);
+    x = x_edge + (X - fan_edge(n, true).X_at(t)) * label_density(region.state);
   } else {
     x = node.x_at(t) + (X - node.X_at(t)) * label_density(region.state);
   }
@@ -182,27 +186,12 @@ void Tracker::sample(const SampleTime& st) {
 
 void Tracker::totals(double t, double& energy, double& momentum) const {
   energy = momentum = 0.0;
-  for (const Piece& piece : pieces_) {
-    if (piece.left_end == kNone) continue;  // rejoined into another piece
-    const int index = static_cast<int>(&piece - pieces_.data());
-    if (is_light(index)) {
-      const Material& m = *nodes_[piece.left_end].right.material;
-      walk_light(index, t, [&](double, double, double X_a, double X_b, const State& state, bool) {
-        energy += (X_b - X_a) * energy_density(m, state);
-        momentum += (X_b - X_a) * momentum_density(m, state);
-      });
-      continue;
-    }
-    const auto add = [&](double dX, const Material& m, const State& state) {
+  for (std::size_t p = 0; p < pieces_.size(); ++p) {
+    if (pieces_[p].left_end == kNone) continue;  // rejoined into another piece
+    integrate_piece(static_cast<int>(p), t, [&](double dX, const Material& m, const State& state) {
       energy += dX * energy_density(m, state);
       momentum += dX * momentum_density(m, state);
-    };
-    for (int n = piece.left_end; nodes_[n].kind != NodeKind::right_end; n = nodes_[n].next) {
-      if (unsplit(n)) fan_wedge(n, t, add);
-      double Xa = 0.0, Xb = 0.0;
-      region_span(n, t, Xa, Xb);
-      add(Xb - Xa, *nodes_[n].right.material, nodes_[n].right.state);
-    }
+    });
   }
 }
 

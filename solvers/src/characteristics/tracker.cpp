@@ -371,18 +371,7 @@ RunResult Tracker::run() {
         r.internal_energy += dX * split.internal;
         r.rest_energy += dX * split.rest;
       };
-      if (is_light(parts[k])) {
-        const Material& m = *nodes_[piece.left_end].right.material;
-        walk_light(parts[k], t_end,
-                   [&](double, double, double X_a, double X_b, const State& state, bool) { add(X_b - X_a, m, state); });
-      } else {
-        for (int n = piece.left_end; nodes_[n].kind != NodeKind::right_end; n = nodes_[n].next) {
-          if (unsplit(n)) fan_wedge(n, t_end, add);
-          double Xa = 0.0, Xb = 0.0;
-          region_span(n, t_end, Xa, Xb);
-          add(Xb - Xa, *nodes_[n].right.material, nodes_[n].right.state);
-        }
-      }
+      integrate_piece(parts[k], t_end, add);
       r.velocity_mean = mass > 0.0 ? mass_velocity / mass : 0.0;
       result_.bodies.push_back(r);
     }

@@ -630,6 +630,11 @@ class Tracker {
   /// Legendre nodes of the exact fan, dX their weights (the integrals of totals and sums).
   template <class Add>
   void fan_wedge(int id, double t, Add&& add) const;
+  /// Calls add(dX, material, state) over piece `piece` at time t, region by region (light and
+  /// lattice pieces through walk_light, unsplit fans through fan_wedge): what totals and the
+  /// bodies' sums integrate.
+  template <class Add>
+  void integrate_piece(int piece, double t, Add&& add) const;
   /// Records an unsplit fan's two edges in fronts.csv, up to t.
   void record_fan_edges(int id, double t);
   /// Where label X at time t lies in the region right of node n and in the centred fan of n
@@ -877,6 +882,23 @@ struct QuadraturePoint {
   double at = 0.0, weight = 0.0;
 };
 [[nodiscard]] const std::vector<QuadraturePoint>& fan_quadrature();
+
+template <class Add>
+void Tracker::integrate_piece(int piece, double t, Add&& add) const {
+  const int left_end = pieces_[piece].left_end;
+  if (is_light(piece)) {
+    const Material& m = *nodes_[left_end].right.material;
+    walk_light(piece, t,
+               [&](double, double, double X_a, double X_b, const State& state, bool) { add(X_b - X_a, m, state); });
+    return;
+  }
+  for (int n = left_end; nodes_[n].kind != NodeKind::right_end; n = nodes_[n].next) {
+    if (unsplit(n)) fan_wedge(n, t, add);
+    double Xa = 0.0, Xb = 0.0;
+    region_span(n, t, Xa, Xb);
+    add(Xb - Xa, *nodes_[n].right.material, nodes_[n].right.state);
+  }
+}
 
 template <class Add>
 void Tracker::fan_wedge(int id, double t, Add&& add) const {
