@@ -10,6 +10,7 @@
 # the file. Exits non-zero if a mutation is missed, does not apply or does not build.
 #
 #   scripts/mutation_check.sh [MUTATIONS_FILE]       JOBS=2 by default
+#   MUTATIONS_CHECK_ONLY=1 scripts/mutation_check.sh   only that every search text applies
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 list=${1:-$root/scripts/mutations.txt}
@@ -31,6 +32,25 @@ for line in "${lines[@]}"; do
   suites+=("${names[@]}")
 done
 mapfile -t suites < <(printf '%s\n' "${suites[@]}" | sort -u)
+
+# Every search text must occur exactly once before anything is built, so that a mutation
+# whose code moved fails in seconds, not after the build and the other mutations.
+# (perl: no quoting of the text.)
+occurs_once() {
+  SEARCH=$(field "$1" 3) perl -0777 -ne '
+    my $s = $ENV{SEARCH}; my $n = () = /\Q$s\E/g; exit($n == 1 ? 0 : 1);' "$2"
+}
+stale=0
+for line in "${lines[@]}"; do
+  file=$(field "$line" 2)
+  if [ ! -f "$work/src/$file" ] || ! occurs_once "$line" "$work/src/$file"; then
+    echo "mutation $(field "$line" 1): the search text must occur exactly once in $file:" >&2
+    echo "  $(field "$line" 3)" >&2
+    stale=1
+  fi
+done
+[ "$stale" -eq 0 ] || exit 2
+[ "${MUTATIONS_CHECK_ONLY:-}" = 1 ] && { echo "mutation check: ${#lines[@]} search texts apply"; exit 0; }
 
 echo "mutation check: ${#lines[@]} mutations; building ${suites[*]}"
 cmake -S "$work/src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DRIGIDITY_BUILD_BENCHMARKS=OFF \
