@@ -90,8 +90,8 @@ std::string format(const char* fmt, auto... args) {
 }
 
 // =====================================================================================
-// exact solutions (tests/exact: the laws of SPEC §2 in closed form, the jump conditions and
-// Riemann invariants of SPEC §1 solved by bisection; checked by tests/exact/exact_test.cpp)
+// exact solutions (tests/exact: the laws of docs/materials.md in closed form, the jump conditions and
+// Riemann invariants of docs/physics.md solved by bisection; checked by tests/exact/exact_test.cpp)
 
 const wp::ClosedFormLaw<double> kSteel = wp::rigid(1.0);
 const wp::ClosedFormLaw<double> kFlyer = wp::rigid(1.0);

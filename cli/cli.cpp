@@ -1,5 +1,5 @@
 // The rigidity command line: dispatch, help, and the mapping of errors to exit
-// status (SPEC §4).
+// status (docs/cli.md).
 #include "rigidity/cli.hpp"
 
 #include <exception>

@@ -37,7 +37,7 @@ namespace fs = std::filesystem;
 constexpr std::string_view kDefaultOut = "out/compare";
 /// The speed of the wall impact reported in materials.csv and the summary.
 constexpr double kDefaultImpactSpeed = 0.5;
-/// impact.csv by default: v = k/100, k = 1..99 (0.2 and 0.6, the SPEC's reference speeds, among them).
+/// impact.csv by default: v = k/100, k = 1..99 (0.2 and 0.6, the reference speeds of docs/materials.md, among them).
 constexpr int kDefaultSpeedSteps = 100;
 /// stress_strain.csv: ln s uniform on [−ln 50, ln 50], 2·200 steps, s = 1 included.
 constexpr double kStretchSpan = 50.0;

@@ -1,4 +1,4 @@
-// The rigidity command line: run, validate, materials, compare (SPEC §4).
+// The rigidity command line: run, validate, materials, compare (docs/cli.md).
 #include "rigidity/cli.hpp"
 
 int main(int argc, char** argv) { return rigidity::cli_main(argc, argv); }

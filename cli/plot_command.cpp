@@ -270,7 +270,7 @@ std::string join_plot(const std::vector<std::string>& elements) {
 
 // ---- the three plots ------------------------------------------------------------------
 
-/// Front kinds (SPEC §5) and their colours, as in scripts/plot_xt.sh.
+/// Front kinds (docs/cli.md, "What a run writes") and their colours, as in scripts/plot_xt.sh.
 struct KindStyle {
   std::string_view kind;
   std::string_view colour;

@@ -1,5 +1,5 @@
 // rigidity sweep SWEEP.yaml: every case of a parameter sweep, in-process on threads,
-// into one table (SPEC §6). Ctrl-C stops handing out cases; a re-run resumes.
+// into one table (docs/sweeps.md). Ctrl-C stops handing out cases; a re-run resumes.
 #include <unistd.h>
 
 #include <chrono>

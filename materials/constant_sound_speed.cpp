@@ -1,4 +1,4 @@
-/// `constant_sound_speed`: dp/de = V² at every stretch (SPEC §2), the Smoller–Temple
+/// `constant_sound_speed`: dp/de = V² at every stretch (docs/materials.md), the Smoller–Temple
 /// barotropic fluid p = V² e after a constant shift that puts p = 0, e = ρ00 at s = 1.
 ///
 /// With k = 1 + V² and t = ln s:
@@ -58,7 +58,7 @@ class ConstantSoundSpeed final : public Material {
     return rest_density() * (std::exp(-v_ * v_ * t) + v_ * v_ * std::exp(t)) / k_;
   }
 
-  /// p = ρ00 V²/k (s^{−k} − 1) (SPEC §2).
+  /// p = ρ00 V²/k (s^{−k} − 1) (docs/materials.md).
   [[nodiscard]] double pressure(Stretch s) const override {
     return rest_density() * v_ * v_ / k_ * std::expm1(-k_ * s.log());
   }

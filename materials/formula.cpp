@@ -275,7 +275,7 @@ void check_law(const NumericMaterial& material, const Expression& expression, bo
       fail(value, std::string("not hyperbolic: ") +
                       (is_pressure ? "dp/ds = " + text_of(-stiffness) + " is not negative (p must fall as s grows)"
                                    : "W'' = " + text_of(stiffness) + " is not positive (W must be convex)"));
-    // c_s² = s W''/(e + p) (SPEC §1), taken as c where above it by less than the tables' accuracy:
+    // c_s² = s W''/(e + p) (docs/physics.md), taken as c where above it by less than the tables' accuracy:
     // the material's own sound_speed, which the solvers and the registry's check read.
     if (!(material.sound_speed(s) <= 1.0))
       fail(value, "acausal: the sound speed c_s = " + text_of(std::sqrt(value * stiffness / enthalpy)) +

@@ -2,7 +2,7 @@
 /// state run at the constant speed V relative to the unstrained material, for every
 /// impact speed: the argument of physics/0307019 §3 with V_b = V < c instead of c.
 ///
-/// With b = V, a² = 1 − b² and R(s) = sqrt(b² + a²/s²) (SPEC §2):
+/// With b = V, a² = 1 − b² and R(s) = sqrt(b² + a²/s²) (docs/materials.md):
 ///
 ///   e = ρ00 (R − b²)/a²,   p = e/R − ρ00,   c_s = b/R,   c_s² = b²s²/(b²s² + a²).
 ///
@@ -70,11 +70,11 @@ class Hooke final : public Material {
 
   [[nodiscard]] std::string_view model() const override { return kName; }
 
-  /// p = e/R − ρ00 (SPEC §2): as −ρ00 b² σ/(R (q + s)) near s = 1, and in far tension as the
+  /// p = e/R − ρ00 (docs/materials.md): as −ρ00 b² σ/(R (q + s)) near s = 1, and in far tension as the
   /// maximum tension plus a positive remainder, so that it never rounds below that limit.
   [[nodiscard]] double pressure(Stretch s) const override { return pressure_of(terms(s.log()), s.log()); }
 
-  /// e = ρ00 (R − b²)/(1 − b²) (SPEC §2): as ρ00 (1 − σ/(q + s)) in compression, and in
+  /// e = ρ00 (R − b²)/(1 − b²) (docs/materials.md): as ρ00 (1 − σ/(q + s)) in compression, and in
   /// tension as (e + p) − p, so that e + p never rounds below 0.
   [[nodiscard]] double energy_density(Stretch s) const override {
     if (s.log() >= 0.0) return enthalpy_density(s) - pressure(s);
@@ -85,7 +85,7 @@ class Hooke final : public Material {
   /// e + p = ρ00/(s² R): from e(1 + 1/R) − ρ00 with R² − b² = a²/s².
   [[nodiscard]] double enthalpy_density(Stretch s) const override { return enthalpy_of(terms(s.log())); }
 
-  /// c_s = b/R = b s/sqrt(b²s² + a²) (SPEC §2).
+  /// c_s = b/R = b s/sqrt(b²s² + a²) (docs/materials.md).
   [[nodiscard]] double sound_speed(Stretch s) const override { return b_ / terms(s.log()).r; }
 
   /// p, e + p and c_s from one evaluation of the terms.
@@ -166,7 +166,7 @@ class Hooke final : public Material {
   [[nodiscard]] double psi_max() const override { return psi_max_; }
   [[nodiscard]] double psi_min() const override { return -kInfinity; }
   /// Ψ + artanh(c_s) = artanh(b) is constant: the lab speed of each family is constant
-  /// along its own waves (SPEC §2).
+  /// along its own waves (docs/materials.md).
   [[nodiscard]] bool linearly_degenerate() const override { return true; }
 
  private:

@@ -38,10 +38,10 @@ class Rigid final : public Material {
   /// W = (ρ00/2)(1/s + s) = ρ00 cosh(ln s): rest energy plus the paper's eq. (16).
   [[nodiscard]] double strain_energy(Stretch s) const override { return rest_density() * std::cosh(s.log()); }
 
-  /// p = (ρ00/2)(1/s² − 1): paper eq. (19), SPEC §2.
+  /// p = (ρ00/2)(1/s² − 1): paper eq. (19), docs/materials.md.
   [[nodiscard]] double pressure(Stretch s) const override { return 0.5 * rest_density() * std::expm1(-2.0 * s.log()); }
 
-  /// e = (ρ00/2)(1/s² + 1) = ρ00 (1 + (1/s² − 1)/2): paper eq. (24), SPEC §2.
+  /// e = (ρ00/2)(1/s² + 1) = ρ00 (1 + (1/s² − 1)/2): paper eq. (24), docs/materials.md.
   /// e + p = ρ00/s²: exact where e and p nearly cancel (far tension).
   [[nodiscard]] double enthalpy_density(Stretch s) const override { return rest_density() * std::exp(-2.0 * s.log()); }
 
@@ -63,7 +63,7 @@ class Rigid final : public Material {
   /// W'' = ρ00/s³ (derivative of eq. (16)).
   [[nodiscard]] double stiffness(Stretch s) const override { return rest_density() * std::exp(-3.0 * s.log()); }
 
-  /// Ψ = ∫_s^1 dσ/σ = −ln s (SPEC §1 with c_s = 1).
+  /// Ψ = ∫_s^1 dσ/σ = −ln s (docs/physics.md with c_s = 1).
   [[nodiscard]] double riemann_psi(Stretch s) const override { return -s.log(); }
 
   /// ln s = −½ ln(1 + 2p/ρ00), the inverse of eq. (19); reachable for −ρ00/2 < p < ∞.

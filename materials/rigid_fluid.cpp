@@ -39,7 +39,7 @@ class RigidFluid final : public Material {
   /// p = (ρ00/2)(1/s² − 1): paper eq. (19).
   [[nodiscard]] double pressure(Stretch s) const override { return 0.5 * rest_density() * std::expm1(-2.0 * s.log()); }
 
-  /// e = ρ00 + p: the law itself (paper footnote 4, SPEC §2).
+  /// e = ρ00 + p: the law itself (paper footnote 4, docs/materials.md).
   /// e + p = ρ00/s².
   [[nodiscard]] double enthalpy_density(Stretch s) const override { return rest_density() * std::exp(-2.0 * s.log()); }
 
@@ -58,7 +58,7 @@ class RigidFluid final : public Material {
   /// W'' = ρ00/s³.
   [[nodiscard]] double stiffness(Stretch s) const override { return rest_density() * std::exp(-3.0 * s.log()); }
 
-  /// Ψ = −ln s (SPEC §1 with c_s = 1), ≥ 0 on the admissible range.
+  /// Ψ = −ln s (docs/physics.md with c_s = 1), ≥ 0 on the admissible range.
   [[nodiscard]] double riemann_psi(Stretch s) const override { return -s.log(); }
 
   /// ln s = −½ ln(1 + 2p/ρ00); reachable for 0 ≤ p < ∞ (p = 0 is the natural state).

@@ -1,4 +1,5 @@
-/// `tabulated`: a material given by a table of p(s) or of e(s), read from a CSV file:
+/// `tabulated`: a material given by a table of p(s) or of e(s), read from a CSV file (or
+/// written inline: `table` text with a line break is the table itself):
 ///
 ///   # comments and blank lines are skipped
 ///   s,p                       header: s and p, or s and e (p, e in the scene's units: Pa in an
@@ -206,23 +207,37 @@ void check_rows(Table& table) {
   if (table.column == Column::energy) derive_pressures(table, natural);
 }
 
-/// Reads and checks the rows of `path` (relative paths from `directory`), written in `units`, for
-/// a material of rest density `rest_density` (natural). \throws std::invalid_argument
-Table read_table(const std::string& path, const std::string& directory, UnitSystem units, double rest_density) {
+/// Reads and checks the rows of `source`, written in `units`, for a material of rest density
+/// `rest_density` (natural): a CSV file (relative paths from `directory`), or, where `source`
+/// holds a line break, the table itself (written inline in the scene, or by
+/// rigidity.Material.from_function), whose errors name its lines. \throws std::invalid_argument
+Table read_table(const std::string& source, const std::string& directory, UnitSystem units, double rest_density) {
   namespace fs = std::filesystem;
   Table table;
   table.scale = to_natural(1.0, Dimension::pressure, units) / (units == UnitSystem::si ? rest_density : 1.0);
   table.unit = units == UnitSystem::si ? "Pa" : "rest_density c^2";
-  const fs::path written(path);
-  table.file = (written.is_absolute() || directory.empty() ? written : fs::path(directory) / written).string();
-  std::error_code ec;
-  if (!fs::is_regular_file(table.file, ec))
-    throw std::invalid_argument("table '" + table.file +
-                                "': " + (fs::exists(table.file, ec) ? "not a file" : "no such file"));
-  if (fs::file_size(table.file, ec) > kMaxTableBytes)
-    throw std::invalid_argument("table '" + table.file + "': larger than " + std::to_string(kMaxTableBytes) + " bytes");
-  std::ifstream in(table.file);
-  if (!in) throw std::invalid_argument("table '" + table.file + "': cannot be opened for reading");
+  std::ifstream file;
+  std::istringstream inline_rows;
+  const bool inline_table = source.find('\n') != std::string::npos;
+  if (inline_table) {
+    table.file = "inline table";
+    if (source.size() > kMaxTableBytes)
+      throw std::invalid_argument("inline table: larger than " + std::to_string(kMaxTableBytes) + " bytes");
+    inline_rows.str(source);
+  } else {
+    const fs::path written(source);
+    table.file = (written.is_absolute() || directory.empty() ? written : fs::path(directory) / written).string();
+    std::error_code ec;
+    if (!fs::is_regular_file(table.file, ec))
+      throw std::invalid_argument("table '" + table.file +
+                                  "': " + (fs::exists(table.file, ec) ? "not a file" : "no such file"));
+    if (fs::file_size(table.file, ec) > kMaxTableBytes)
+      throw std::invalid_argument("table '" + table.file + "': larger than " + std::to_string(kMaxTableBytes) +
+                                  " bytes");
+    file.open(table.file);
+    if (!file) throw std::invalid_argument("table '" + table.file + "': cannot be opened for reading");
+  }
+  std::istream& in = inline_table ? static_cast<std::istream&>(inline_rows) : file;
 
   bool header_read = false;
   std::string line;
@@ -271,6 +286,14 @@ Table read_table(const std::string& path, const std::string& directory, UnitSyst
   return table;
 }
 
+/// The unit system the table's p or e column is written in (`table_units`).
+UnitSystem table_units(const ParameterValues& values) {
+  const std::string& units = values.text("table_units");
+  if (units == "scene") return values.units();
+  if (units == "rest_density c^2") return UnitSystem::natural;
+  throw ParameterError("table_units", "must be 'scene' or 'rest_density c^2', got '" + units + "'");
+}
+
 class Tabulated final : public PressureLawMaterial {
  public:
   static constexpr std::string_view kName = "tabulated";
@@ -290,14 +313,17 @@ class Tabulated final : public PressureLawMaterial {
     return {rest_density_parameter(),
             ParameterSpec::text("table",
                                 "CSV file of the law, p(s) or e(s); a relative path starts at the scene file's "
-                                "directory")
-                .require()};
+                                "directory. Text with a line break is the table itself (a YAML block scalar)")
+                .require(),
+            ParameterSpec::text("table_units",
+                                "the units of the p or e column: 'scene' (Pa in an SI scene, rest_density c^2 in a "
+                                "natural one) or 'rest_density c^2' (in any scene)")
+                .defaults_to(std::string("scene"))};
   }
 
   explicit Tabulated(const ParameterValues& values)
-      : Tabulated(values,
-                  read_table(values.text("table"), values.directory(), values.units(), values.number("rest_density"))) {
-  }
+      : Tabulated(values, read_table(values.text("table"), values.directory(), table_units(values),
+                                     values.number("rest_density"))) {}
 
   [[nodiscard]] std::string_view model() const override { return kName; }
   [[nodiscard]] std::vector<double> law_breaks() const override { return log_stretches_; }
@@ -370,7 +396,7 @@ class Tabulated final : public PressureLawMaterial {
         if (!(enthalpy > 0.0)) throw std::invalid_argument(where + "e + p = " + text_of(enthalpy) + " is not positive");
         if (!(stiffness_value > 0.0))
           throw std::invalid_argument(where + "not hyperbolic: W'' = " + text_of(stiffness_value) + " is not positive");
-        const double square = s.value() * stiffness_value / enthalpy;  // c_s² = s W''/(e + p)  (SPEC §1)
+        const double square = s.value() * stiffness_value / enthalpy;  // c_s² = s W''/(e + p)  (docs/physics.md)
         if (!(square <= 1.0 + kCausalityTolerance))
           throw std::invalid_argument(where + "acausal: the sound speed c_s = " + text_of(std::sqrt(square)) +
                                       " exceeds c (the table's p and e are read in " + table_.unit +

@@ -1,5 +1,5 @@
 // rigidity's Python binding (the module rigidity._rigidity; the package rigidity/__init__.py
-// shapes it as SPEC §7 describes): scenes run in process with the GIL released (taken back
+// shapes it as docs/python.md describes): scenes run in process with the GIL released (taken back
 // every 0.1 s to run Python's signal handlers: Ctrl-C stops a run), their outputs handed over
 // as NumPy arrays; materials built through the registry, their laws vectorised in
 // C++; the exact Riemann problem; errors as Python exceptions carrying the file/line/key text.
@@ -375,7 +375,7 @@ PYBIND11_MODULE(_rigidity, m) {
     return plugin.materials;
   });
 
-  py::class_<Material, std::shared_ptr<Material>>(m, "Material")
+  py::class_<Material, std::shared_ptr<Material>>(m, "Material", py::dynamic_attr())
       .def_property_readonly("model", [](const Material& mat) { return std::string(mat.model()); })
       .def_property_readonly("rest_density", &Material::rest_density)
       .def_property_readonly("linearly_degenerate", &Material::linearly_degenerate)

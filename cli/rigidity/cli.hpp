@@ -1,5 +1,5 @@
 #pragma once
-/// The rigidity command line (SPEC §4):
+/// The rigidity command line (docs/cli.md):
 ///
 ///   rigidity run [SCENE.yaml] [--out DIR] [--set key.path=value ...] [--quiet]
 ///   rigidity validate SCENE.yaml [--set key.path=value ...]

@@ -3,7 +3,7 @@
 withdrawing piston in the constant-sound-speed fluid, by front tracking at several
 tolerances and by finite volume at several resolutions, each against the exact fan.
 
-The exact solution is computed here, from the law alone (SPEC §2): for c_s = V the
+The exact solution is computed here, from the law alone (docs/materials.md): for c_s = V the
 Riemann invariant is Ψ(s) = −V ln s, the gas at rest at s0 is crossed by a C+ simple
 wave (J− = φ − Ψ kept), so inside the fan φ = V ln(s0/s), and a label X sits at the
 state whose C+ speed dX/dt = V / (s (cosh φ + V sinh φ)) is X/t. The piston at velocity

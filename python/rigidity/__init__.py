@@ -151,7 +151,7 @@ def run(scene, set=None):  # noqa: A002 - the name of rigidity run's --set
     overrides = _overrides(set)
     if isinstance(scene, dict):
         # JSON is YAML: the dict reaches the same strict loader as a file does.
-        return _solved(_rigidity.run_text, _json.dumps(scene), "<dict>", overrides)
+        return _solved(_rigidity.run_text, _scene_json(scene), "<dict>", overrides)
     if isinstance(scene, _os.PathLike):
         return _solved(_rigidity.run_file, _os.fspath(scene), overrides)
     if isinstance(scene, str):
@@ -169,11 +169,107 @@ def materials():
 def material(name, **parameters):
     """A registered material built as a scene builds it (declared defaults, ranges, and a check
     that it is hyperbolic and causal with these parameters). Its p, e, sound_speed, psi,
-    stretch_from_pressure and stretch_from_psi take NumPy arrays (NaN outside its range)."""
+    stretch_from_pressure and stretch_from_psi take NumPy arrays (NaN outside its range); its
+    `spec` is its scene entry, so that a scene dict may hold the Material itself."""
     try:
-        return _rigidity.material(name, parameters)
+        made = _rigidity.material(name, parameters)
     except ValueError as error:  # std::invalid_argument: an unknown name or a bad parameter
         raise InputError(str(error)) from None
+    made.spec = dict(model=name, **parameters)
+    return made
+
+
+def _material_from_function(p=None, W=None, stretch=(0.5, 2.0), rest_density=1.0, rows=801):
+    """A material from a law written in Python: the pressure p(s), or the strain energy
+    W(s) = e s (rest energy included: W(1) = 1), both in units of rest_density c^2 and
+    vectorised over a NumPy array of stretches s. The law is tabulated once, at `rows`
+    stretches evenly spaced in ln s over `stretch` = (smallest, largest), s = 1 among them,
+    p = -dW/ds by a fourth-order central difference where W is given; the table is then a
+    `tabulated` material, checked as a table in a scene is (the natural state unstressed, p
+    falling as s grows, hyperbolic and causal between every pair of rows: errors name the row
+    and its stretch), and runs as fast as one.
+
+    The material's `spec` is its scene entry, {"model": "tabulated", "table": ..., ...}: a
+    scene dict given to rigidity.run may hold the Material itself among its materials, and
+    yaml.safe_dump(m.spec) writes it into a scene file (for sweeps and the command line).
+    The table is in units of rest_density c^2 (`table_units`), so the entry means the same
+    law in an SI scene, whose rest_density it takes from the number given here (kg/m^3)."""
+    import numpy
+
+    if (p is None) == (W is None):
+        raise InputError("Material.from_function: give the pressure p(s) or the strain energy W(s), one of them")
+    try:
+        low, high = (float(x) for x in stretch)
+    except (TypeError, ValueError):
+        raise InputError("Material.from_function: stretch must be (smallest, largest), got %r" % (stretch,)) from None
+    if not (0.0 < low < 1.0 < high and numpy.isfinite(high)):
+        raise InputError("Material.from_function: stretch must hold the natural state: 0 < smallest < 1 < largest, "
+                         "got (%r, %r)" % (low, high))
+    rows = int(rows)
+    if not 5 <= rows <= 100000:
+        raise InputError("Material.from_function: rows must be in [5, 100000], got %d" % rows)
+    # Rows evenly spaced in ln s on each side of s = 1, the natural state exactly among them.
+    below = max(2, int(round((rows - 1) * -numpy.log(low) / (numpy.log(high) - numpy.log(low)))))
+    above = max(2, rows - 1 - below)
+    s = numpy.concatenate([numpy.exp(numpy.linspace(numpy.log(low), 0.0, below + 1))[:-1], [1.0],
+                           numpy.exp(numpy.linspace(0.0, numpy.log(high), above + 1))[1:]])
+    name = "p" if p is not None else "W"
+
+    def evaluate(law, x):
+        try:
+            values = numpy.asarray(law(x.copy()), dtype=float)
+        except Exception as error:  # the user's function: whatever it raises is reported with the law's name
+            raise InputError("Material.from_function: %s(s) raised %s: %s" % (name, type(error).__name__, error)) from None
+        if values.shape != x.shape:
+            raise InputError("Material.from_function: %s(s) must return one value per stretch (shape %s), got shape %s"
+                             % (name, x.shape, values.shape))
+        bad = numpy.flatnonzero(~numpy.isfinite(values))
+        if bad.size:
+            raise InputError("Material.from_function: %s(s) is %r at s = %.12g" % (name, values[bad[0]], x[bad[0]]))
+        return values
+
+    if p is not None:
+        pressure = evaluate(p, s)
+    else:
+        # p = -W'(s): the five-point central difference, steps h = 1e-3 s (truncation ~ h^4 W^(5),
+        # rounding ~ 1e-16 W / h: both near 1e-13 for laws of order one).
+        h = 1e-3 * s
+        pressure = -(evaluate(W, s - 2 * h) - 8 * evaluate(W, s - h) + 8 * evaluate(W, s + h)
+                     - evaluate(W, s + 2 * h)) / (12 * h)
+        natural = float(evaluate(W, numpy.array([1.0]))[0])
+        if abs(natural - 1.0) > 1e-9:
+            raise InputError("Material.from_function: W(1) = %.12g; the strain energy includes the rest energy, "
+                             "W(1) = 1 (units of rest_density c^2)" % natural)
+    one = int(numpy.flatnonzero(s == 1.0)[0])
+    scale = max(abs(pressure[one - 1]), abs(pressure[one + 1]))
+    if abs(pressure[one]) > 1e-9 * max(scale, 1e-300) and abs(pressure[one]) > 1e-14:
+        raise InputError("Material.from_function: p(1) = %.12g; the natural state s = 1 is unstressed, p(1) = 0"
+                         % pressure[one])
+    pressure[one] = 0.0
+    table = "s,p\n" + "".join("%r,%r\n" % (float(a), float(b)) for a, b in zip(s, pressure))
+    spec = {"model": "tabulated", "rest_density": float(rest_density), "table": table,
+            "table_units": "rest_density c^2"}
+    try:
+        made = material("tabulated", **{k: v for k, v in spec.items() if k != "model"})
+    except InputError as error:  # the checks of a table, which name its lines and rows
+        raise InputError("Material.from_function: the law tabulated at %d rows over s in [%.12g, %.12g]: %s"
+                         % (len(s), low, high, error)) from None
+    made.spec = spec
+    return made
+
+
+Material.from_function = staticmethod(_material_from_function)
+
+
+def _scene_json(scene):
+    """A scene dict as JSON, Material objects among its values written as their scene entries."""
+    def entry(value):
+        spec = getattr(value, "spec", None)
+        if isinstance(value, Material) and isinstance(spec, dict):
+            return spec
+        raise TypeError("a scene dict holds numbers, text, lists and dicts (and Materials made in Python), "
+                        "not %s" % type(value).__name__)
+    return _json.dumps(scene, default=entry)
 
 
 def riemann(left_material, left, right_material, right, min_pressure=None):
@@ -194,7 +290,7 @@ def load_plugin(path):
 
 
 def sweep(path, jobs=None):
-    """Runs a sweep file (SPEC §6) in this process, writing no files, and returns its table
+    """Runs a sweep file (docs/sweeps.md) in this process, writing no files, and returns its table
     as a dict of NumPy columns: case, each parameter (as given), status, exit_code, message,
     each `collect` figure (NaN where undefined) and wall_time_s. `jobs` threads (default:
     the machine's cores); `rigidity sweep` writes the same table to sweep.csv."""

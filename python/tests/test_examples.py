@@ -23,7 +23,7 @@ def test_wall_impact_runs_match_the_closed_forms(V, v):
 
 
 def test_the_closed_form_is_the_papers_for_the_rigid_bar():
-    # SPEC §2: v = 0.6 -> s = 1/2, p = 3/2, contact 2 s = 1; hooke V = 0.5 at 0.2 -> p = 1/9.
+    # docs/materials.md: v = 0.6 -> s = 1/2, p = 3/2, contact 2 s = 1; hooke V = 0.5 at 0.2 -> p = 1/9.
     assert wall_impact.closed_form(1.0, 0.6) == pytest.approx((1.5, 1.0, -0.6), rel=1e-12)
     assert wall_impact.closed_form(0.5, 0.2)[0] == pytest.approx(1.0 / 9.0, rel=1e-9)
 

@@ -1,4 +1,4 @@
-"""The Python package against closed forms (SPEC §2, the paper's wall impact), not only
+"""The Python package against closed forms (docs/physics.md, the paper's wall impact), not only
 that calls return: run, materials, the exact Riemann problem, errors, and the GIL."""
 
 import os
@@ -60,7 +60,7 @@ def test_rigid_wall_pressure_against_the_closed_form_for_a_dict_scene(v):
 def test_set_overrides_keys_as_the_command_line_does():
     r = rigidity.run(PAPER, set={"bodies.0.velocity": 0.8, "time.end": 0.8})
     t, p = r.probes["wall"]["p"]
-    np.testing.assert_allclose(p[(t > 0) & (t < 0.6)], 4.0, rtol=1e-12)  # SPEC §2: p = 4 at v = 0.8
+    np.testing.assert_allclose(p[(t > 0) & (t < 0.6)], 4.0, rtol=1e-12)  # docs/materials.md: p = 4 at v = 0.8
     assert r.summary["t_end"] == pytest.approx(0.8)
 
 
@@ -97,7 +97,7 @@ def test_a_bad_scene_is_an_input_error_naming_line_and_key():
 
 
 def test_a_crushed_hooke_bar_is_inadmissible():
-    # SPEC §2: an impact at v >= V collapses a hooke bar: no classical solution.
+    # docs/materials.md: an impact at v >= V collapses a hooke bar: no classical solution.
     with pytest.raises(rigidity.InadmissibleError):
         rigidity.run(wall_scene("hooke", 0.6, wave_speed=0.5))
 
@@ -155,7 +155,7 @@ def test_riemann_matches_the_symmetric_collision_and_parts_a_fluid():
 def test_wall_impact_and_crush_speed():
     hooke = rigidity.material("hooke", wave_speed=0.5)
     impact = hooke.wall_impact(0.2)
-    assert impact["s"] == pytest.approx(0.6123724357, rel=1e-9)  # SPEC §2 reference values
+    assert impact["s"] == pytest.approx(0.6123724357, rel=1e-9)  # docs/materials.md reference values
     assert impact["p"] == pytest.approx(0.1111111111, rel=1e-9)
     assert impact["front_speed"] == pytest.approx(0.5, rel=1e-12)
     assert hooke.crush_speed() == pytest.approx(0.5, rel=1e-12)
@@ -343,3 +343,86 @@ def test_a_run_stopped_by_a_budget_warns():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert rigidity.run(ringing_scene(1.0)).status == "ok"
+
+
+# A law written in Python: constant_sound_speed's, p = V^2/k (s^-k - 1) with k = 1 + V^2, and
+# its strain energy W = 1 - V^2/k ((s^(1-k) - 1)/(1 - k) - (s - 1)), written here from the
+# closed form, not from the built-in material.
+GAS_V = 0.5
+GAS_K = 1.0 + GAS_V**2
+
+
+def gas_pressure(s):
+    return GAS_V**2 / GAS_K * (s**-GAS_K - 1.0)
+
+
+def gas_strain_energy(s):
+    return 1.0 - GAS_V**2 / GAS_K * ((s ** (1.0 - GAS_K) - 1.0) / (1.0 - GAS_K) - (s - 1.0))
+
+
+@pytest.mark.parametrize("law", ["p", "W"])
+def test_a_material_from_a_python_function_is_the_law_it_samples(law):
+    given = {"p": gas_pressure} if law == "p" else {"W": gas_strain_energy}
+    m = rigidity.Material.from_function(stretch=(0.3, 3.0), **given)
+    s = np.linspace(0.31, 2.9, 97)
+    np.testing.assert_allclose(m.p(s), gas_pressure(s), rtol=5e-8, atol=1e-12)  # 801 rows: third order
+    np.testing.assert_allclose(m.sound_speed(s), GAS_V, rtol=1e-5)
+    lo, hi = m.admissible_stretch
+    assert lo == pytest.approx(0.3, rel=1e-12) and hi == pytest.approx(3.0, rel=1e-12)
+    assert m.spec["model"] == "tabulated" and m.spec["table_units"] == "rest_density c^2"
+
+
+def test_a_scene_dict_holding_a_python_law_runs_as_the_built_in_law(tmp_path):
+    import json
+    m = rigidity.Material.from_function(p=gas_pressure, stretch=(0.3, 3.0))
+    scene = wall_scene("constant_sound_speed", 0.4, t_end=3.0, sound_speed=GAS_V)
+    scene["solver"] = {"tolerance": 1e-4}
+    built_in = rigidity.run(scene)
+    scene["materials"]["m"] = m
+    from_python = rigidity.run(scene)
+    t, p = from_python.probes["wall"]["p"]
+    np.testing.assert_allclose(t, built_in.probes["wall"]["p"][0], rtol=0, atol=0)
+    assert p.max() > 0.1  # the bar is on the wall, compressed
+    # Within 1e-7 (the error bound is 5e-5 of the mean |dphi| + |dPsi|; the tables agree to 1e-8).
+    np.testing.assert_allclose(p, built_in.probes["wall"]["p"][1], rtol=0, atol=1e-7)
+    # Its scene entry written into a file (JSON is YAML) gives the same numbers.
+    path = tmp_path / "scene.yaml"
+    scene["materials"]["m"] = m.spec
+    path.write_text(json.dumps(scene))
+    np.testing.assert_array_equal(rigidity.run(str(path)).probes["wall"]["p"][1], p)
+
+
+def test_a_python_law_in_an_si_scene_takes_its_units_from_the_scene():
+    c = 299792458.0
+    scene = {
+        "name": "si_gas", "units": "si",
+        "materials": {"gas": {"model": "constant_sound_speed", "rest_density": 7850.0, "sound_speed": GAS_V * c}},
+        "bodies": [{"name": "bar", "material": "gas", "position": 0.0, "length": 1.0, "velocity": 0.4 * c}],
+        "boundaries": {"left": {"type": "free"}, "right": {"type": "wall"}},
+        "solver": {"tolerance": 1e-4},
+        "time": {"end": 2e-9},
+        "outputs": {"probes": [{"name": "wall", "body": "bar", "at": "right", "quantities": ["p"], "every": 2e-10}]},
+    }
+    built_in = rigidity.run(scene)
+    scene["materials"]["gas"] = rigidity.Material.from_function(p=gas_pressure, stretch=(0.3, 3.0), rest_density=7850.0)
+    t, p = rigidity.run(scene).probes["wall"]["p"]
+    assert p.max() > 1e19  # Pa: rest_density c^2 is 7e20 Pa
+    np.testing.assert_allclose(p, built_in.probes["wall"]["p"][1], rtol=1e-6)
+
+
+@pytest.mark.parametrize("law, stretch, message", [
+    (lambda s: np.where(s > 2.0, np.nan, gas_pressure(s)), (0.5, 3.0), "is nan at s = 2.0"),
+    (lambda s: gas_pressure(s) + 0.01, (0.5, 2.0), "p(1) = 0.01"),
+    (lambda s: 0.2 * np.sin(4 * np.log(s)) * -1.0, (0.3, 3.0), "row"),  # p rises again: not hyperbolic
+    (lambda s: 2.0 * (1.0 / s**2 - 1.0), (0.5, 2.0), "causal"),  # four times the rigid law: c_s > c
+    (lambda s: gas_pressure(s)[:-1], (0.5, 2.0), "one value per stretch"),
+    (gas_pressure, (1.2, 2.0), "natural state"),
+])
+def test_a_bad_python_law_is_an_input_error_that_says_where(law, stretch, message):
+    with pytest.raises(rigidity.InputError, match=message.replace("(", r"\(").replace(")", r"\)")):
+        rigidity.Material.from_function(p=law, stretch=stretch)
+
+
+def test_a_strain_energy_without_the_rest_energy_is_refused():
+    with pytest.raises(rigidity.InputError, match=r"W\(1\) = 0"):
+        rigidity.Material.from_function(W=lambda s: gas_strain_energy(s) - 1.0)

@@ -1,5 +1,5 @@
 // The finite-volume baseline: a Lagrangian Godunov / MUSCL–Hancock scheme for the
-// label and momentum laws of SPEC §1 (see finite_volume.hpp for the method).
+// label and momentum laws of docs/physics.md (see finite_volume.hpp for the method).
 #include "rigidity/solvers/finite_volume.hpp"
 
 #include <algorithm>
@@ -405,7 +405,7 @@ void Scheme::reconstruct(double dt) {
     face_is_cell_[c] = 1;
     if (slope.plus == 0.0 && slope.minus == 0.0) continue;
     // MUSCL–Hancock predictor in characteristic form: J± at the faces at t + Δt/2,
-    // from ∂t J± + λ± ∂X J± = 0 (SPEC §1).
+    // from ∂t J± + λ± ∂X J± = 0 (docs/physics.md).
     const double h = width_[c];
     const double plus_right = jp[c] + 0.5 * (h - dt * speed_plus_[c]) * slope.plus;
     const double plus_left = jp[c] - 0.5 * (h + dt * speed_plus_[c]) * slope.plus;

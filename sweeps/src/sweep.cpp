@@ -1,4 +1,4 @@
-// Sweeps (SPEC §6): the sweep file, its cases, one case run in-process, and the table.
+// Sweeps (docs/sweeps.md): the sweep file, its cases, one case run in-process, and the table.
 #include "rigidity/sweep.hpp"
 
 #include <yaml-cpp/yaml.h>
@@ -129,7 +129,7 @@ std::vector<double> spaced(const SweepReader& reader, const YAML::Node& node, co
   return values;
 }
 
-/// The event kinds the solvers report (SPEC §5).
+/// The event kinds the solvers report (docs/cli.md, "What a run writes").
 const std::vector<std::string> kEventKinds = {"contact", "separation", "cavitation", "rejoin"};
 
 /// The names in summary.json's "solver" block, by method: the characteristics solver's
@@ -612,7 +612,7 @@ SweepRow run_sweep_case(const Sweep& sweep, std::size_t index, const std::string
     overrides.push_back(sweep.parameters[k] + "=" + sweep.cases[index][k]);
   try {
     // A material key the case's model lacks (wave_speed swept beside model: [rigid, hooke])
-    // is dropped for that case, with a note in its message (SPEC §6).
+    // is dropped for that case, with a note in its message (docs/sweeps.md).
     std::string notes;
     const auto load = [&sweep, &overrides, &notes]() {
       for (;;) {

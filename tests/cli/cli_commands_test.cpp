@@ -1,4 +1,4 @@
-// The command line: help, version, usage errors and `rigidity materials` (SPEC §4).
+// The command line: help, version, usage errors and `rigidity materials` (docs/cli.md).
 #include <algorithm>
 #include <map>
 #include <set>

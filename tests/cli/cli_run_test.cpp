@@ -1,5 +1,5 @@
 // rigidity validate and rigidity run, end to end: exit status, messages and the
-// output directory (SPEC §4, §5).
+// output directory (docs/cli.md, §5).
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -39,7 +39,7 @@ const std::string kTypoScene =
     "  right: {type: wall}\n"
     "time: {end: 1.0}\n";
 
-// SPEC §2: a hooke bar hitting a wall at v >= V collapses: no classical solution.
+// docs/materials.md: a hooke bar hitting a wall at v >= V collapses: no classical solution.
 const std::string kHookeTooFastScene =
     "name: hooke_too_fast\n"
     "units: natural\n"

@@ -1,5 +1,5 @@
 // rigidity compare, end to end: materials.csv, the long-form curves, the charts, the
-// markdown summary, and the wall impacts against the SPEC's reference values and the
+// markdown summary, and the wall impacts against the reference values of docs/materials.md and the
 // jump conditions of labels and momentum.
 #include <algorithm>
 #include <cmath>
@@ -105,7 +105,7 @@ TEST_F(CliTest, CompareWritesOneRowPerMaterial) {
   EXPECT_EQ(rigid.at("linearly_degenerate"), "true");
   EXPECT_EQ(rigid.at("crush_speed"), "");  // no impact speed crushes it
 
-  // hooke's required wave_speed takes the midpoint of (0, 1]: V = 0.5, the SPEC's reference.
+  // hooke's required wave_speed takes the midpoint of (0, 1]: V = 0.5, the reference of docs/materials.md.
   const auto& hooke = row_of(csv, "hooke");
   EXPECT_EQ(hooke.at("parameters"), "wave_speed=0.5");
   EXPECT_EQ(number(hooke, "cs_unstrained"), 0.5);
@@ -126,7 +126,7 @@ TEST_F(CliTest, CompareWritesOneRowPerMaterial) {
 }
 
 TEST_F(CliTest, CompareMatchesTheReferenceWallImpacts) {
-  // SPEC §2: rigid at v = 0.6 and 0.8, hooke (V = 0.5) at v = 0.2.
+  // docs/materials.md: rigid at v = 0.6 and 0.8, hooke (V = 0.5) at v = 0.2.
   struct Reference {
     std::string material;
     double v, s, p, front_speed;
@@ -355,7 +355,7 @@ TEST_F(CliTest, CompareChecksParametersAndSpeeds) {
 
 TEST_F(CliTest, CompareTakesTheNamedMaterialsOfASceneFile) {
   // Two parameter sets of one model, under the scene's names. A Hooke front runs at V into
-  // the bar: behind it s* = γ (V − v)/V (SPEC §2 with the paper's argument of §3).
+  // the bar: behind it s* = γ (V − v)/V (docs/materials.md with the paper's argument of §3).
   write_file("two_hookes.yaml",
              "name: two_hookes\n"
              "materials:\n"

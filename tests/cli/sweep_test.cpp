@@ -1,4 +1,4 @@
-// rigidity sweep (SPEC §6): the figures it collects against the paper's closed forms,
+// rigidity sweep (docs/sweeps.md): the figures it collects against the paper's closed forms,
 // the same table whatever the number of threads, resumption, and bad input.
 #include "rigidity/sweep.hpp"
 
@@ -81,7 +81,7 @@ constexpr const char* kPaperSweep =
 
 class SweepTest : public CliTest {};
 
-// The rigid bar of rest density 1 and length 1 against a wall (SPEC §2, the paper's §3):
+// The rigid bar of rest density 1 and length 1 against a wall (docs/materials.md, the paper's §3):
 // behind the front s = sqrt((1-v)/(1+v)), p = (1/s^2 - 1)/2 = v/(1-v); the front's round
 // trip at c takes 2 s; the bar leaves at -v.
 TEST_F(SweepTest, PaperSceneAgainstClosedForms) {

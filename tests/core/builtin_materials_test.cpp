@@ -1,5 +1,5 @@
 // The four built-in materials against the physics they stand for: the reference values of
-// SPEC §2, the jump conditions of SPEC §1, the limits V → 1 and V → 0 of `hooke`, the
+// docs/materials.md, the jump conditions of docs/physics.md, the limits V → 1 and V → 0 of `hooke`, the
 // identities that define `rigid_fluid` and `constant_sound_speed`, and full precision at
 // tiny strains.
 
@@ -21,7 +21,7 @@ namespace {
 
 /// Closed-form identities and reference values hold to this relative error.
 constexpr double kClosedFormRelTol = 1e-12;
-/// SPEC §2 prints s and p to ten digits.
+/// docs/materials.md prints s and p to ten digits.
 constexpr double kSpecTableAbsTol = 5e-11;
 
 std::shared_ptr<const Material> rigid(double rho = 1.0) { return make_material("rigid", {{"rest_density", rho}}); }
@@ -39,7 +39,7 @@ void expect_relative(double actual, double expected, double tol, const std::stri
   EXPECT_NEAR(actual, expected, tol * std::abs(expected)) << what;
 }
 
-// ---- SPEC §2 reference values: a bar at velocity v against a fixed wall -------------------
+// ---- docs/materials.md reference values: a bar at velocity v against a fixed wall -------------------
 
 struct WallImpact {
   const char* material;
@@ -47,7 +47,7 @@ struct WallImpact {
   double v;
   double s_exact;
   double p_exact;
-  double s_table;  ///< as printed in SPEC §2
+  double s_table;  ///< as printed in docs/materials.md
   double p_table;
   double front_speed;  ///< relative to the unstrained bar
 };
@@ -76,7 +76,7 @@ TEST_P(WallImpactReference, StretchAndPressureBehindTheFront) {
 
 TEST_P(WallImpactReference, JumpConditionsHoldAcrossTheFront) {
   // Ahead: (v, s = 1); behind: (0, s*). Labels: −σ [s/γ] − [v] = 0; momentum:
-  // −σ [(e+p) γ v s] + [p] = 0 (SPEC §1), σ = dX/dt of the front.
+  // −σ [(e+p) γ v s] + [p] = 0 (docs/physics.md), σ = dX/dt of the front.
   const WallImpact& c = GetParam();
   auto m = material();
   const Stretch natural = Stretch::natural();
@@ -157,16 +157,16 @@ TEST(Hooke, LawLimitsAndRanges) {
     EXPECT_TRUE(m->linearly_degenerate());
     for (double s : {1e-9, 0.3, 2.0, 1e12}) {
       const Stretch st = Stretch::from_value(s);
-      const double r = std::sqrt(b * b + a2 / (s * s));  // SPEC §2
+      const double r = std::sqrt(b * b + a2 / (s * s));  // docs/materials.md
       const double e = 2.0 * (r - b * b) / a2;
       const std::string at = "b = " + std::to_string(b) + ", s = " + std::to_string(s);
-      expect_relative(m->energy_density(st), e, 1e-9, "e " + at);  // the SPEC form cancels: 1e-9
+      expect_relative(m->energy_density(st), e, 1e-9, "e " + at);  // the closed form cancels: 1e-9
       expect_relative(m->pressure(st), e / r - 2.0, 1e-9, "p " + at);
       expect_relative(m->sound_speed(st), b * s / std::sqrt(b * b * s * s + a2), kClosedFormRelTol, "c_s " + at);
       expect_relative(m->riemann_psi(st), std::asinh(b / std::sqrt(a2)) - std::asinh(b * s / std::sqrt(a2)), 1e-9,
                       "Psi " + at);
     }
-    // An impact at v >= V cannot stop the bar: no stretch has Ψ = artanh v (SPEC §2).
+    // An impact at v >= V cannot stop the bar: no stretch has Ψ = artanh v (docs/materials.md).
     EXPECT_EQ(m->stretch_at_psi(std::atanh(b)).status, Status::out_of_range);
     EXPECT_EQ(m->stretch_at_psi(std::atanh(std::min(1.0 - 1e-12, 1.01 * b))).status, Status::out_of_range);
     EXPECT_EQ(m->stretch_at_pressure(m->max_pressure()).status, Status::out_of_range);
@@ -216,7 +216,7 @@ TEST(Hooke, WaveSpeedNearOneApproachesRigid) {
 }
 
 TEST(Hooke, NewtonianLimitIsHookesLawToSecondOrder) {
-  // p = ρ00 V² (1 − s) + (3/2) ρ00 V⁴ (1 − s)² + O((1 − s)³) (series of SPEC §2's law):
+  // p = ρ00 V² (1 − s) + (3/2) ρ00 V⁴ (1 − s)² + O((1 − s)³) (series of docs/materials.md's law):
   // Young's modulus E = ρ00 V², and the error of Hooke's law falls as the strain squared.
   const double v = 1e-3;
   const double rho = 3.0;

@@ -1,4 +1,4 @@
-// The material contract (material.hpp, SPEC §1), checked for every registered material
+// The material contract (material.hpp, docs/physics.md), checked for every registered material
 // at once: the suite is instantiated over MaterialRegistry::instance().names(), so a
 // material added later (built in or registered by a test) is covered without edits.
 //

@@ -23,7 +23,7 @@ namespace rigidity::testing {
 
 inline constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 
-/// The materials every build registers (SPEC §2, and `tabulated`).
+/// The materials every build registers (docs/materials.md, and `tabulated`).
 inline const std::vector<std::string> kBuiltinMaterials = {"constant_sound_speed", "formula",  "hooke", "rigid",
                                                            "rigid_fluid",          "tabulated"};
 /// Values of required text parameters, per material: the first is the default of make_material,

@@ -63,7 +63,7 @@ TEST(MaterialRegistry, EveryMaterialDeclaresItsParametersAndNamesItself) {
     EXPECT_FALSE(info.doc.empty());
     const auto rho = std::find_if(info.parameters.begin(), info.parameters.end(),
                                   [](const ParameterSpec& p) { return p.name == "rest_density"; });
-    ASSERT_NE(rho, info.parameters.end()) << "every material takes rest_density (SPEC §2)";
+    ASSERT_NE(rho, info.parameters.end()) << "every material takes rest_density (docs/materials.md)";
     EXPECT_EQ(rho->default_number, 1.0);
     EXPECT_EQ(rho->dimension, Dimension::density);
     EXPECT_NE(rho->range_violation(0.0), "");
@@ -78,7 +78,7 @@ TEST(MaterialRegistry, EveryMaterialDeclaresItsParametersAndNamesItself) {
         required[p.name] = p.upper ? p.upper->value : (p.lower ? p.lower->value + 1.0 : 1.0);
     EXPECT_EQ(make_material(name, required)->model(), name);
   }
-  // SPEC §2: wave_speed and sound_speed are required velocities in (0, 1].
+  // docs/materials.md: wave_speed and sound_speed are required velocities in (0, 1].
   for (const auto& [model, key] :
        {std::pair{"hooke", "wave_speed"}, std::pair{"constant_sound_speed", "sound_speed"}}) {
     const MaterialInfo& info = MaterialRegistry::instance().at(model);

@@ -26,7 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// The constant_sound_speed law (SPEC §2), V = 0.5, in units of ρ00.
+/// The constant_sound_speed law (docs/materials.md), V = 0.5, in units of ρ00.
 constexpr double kV2 = 0.25;
 constexpr double kK = 1.0 + kV2;
 double law_pressure(double s) { return kV2 / kK * (std::pow(s, -kK) - 1.0); }
@@ -196,6 +196,57 @@ TEST(Tabulated, RelativePathsStartAtTheSceneDirectory) {
   } catch (const std::invalid_argument& e) {
     EXPECT_TRUE(contains(e.what(), (path.parent_path() / "no_such_table.csv").string())) << e.what();
     EXPECT_TRUE(contains(e.what(), "no such file")) << e.what();
+  }
+}
+
+TEST(Tabulated, AnInlineTableIsTheFileItWouldBe) {
+  const std::string text = table_text('p', 0.2, 5.0, 60, law_pressure);
+  const TableFile file(text);
+  const auto from_file = tabulated(file.path());
+  const auto from_text = tabulated(text);
+  for (int i = 0; i <= 100; ++i) {
+    const Stretch s = Stretch::from_log(std::log(0.2) + (std::log(5.0) - std::log(0.2)) * i / 100.0);
+    EXPECT_EQ(from_text->pressure(s), from_file->pressure(s)) << "s = " << s.value();
+    EXPECT_EQ(from_text->sound_speed(s), from_file->sound_speed(s)) << "s = " << s.value();
+  }
+  // Its defects name the line of the text.
+  try {
+    static_cast<void>(tabulated("s,p\n0.5,1\n1,0\n2,0.1\n"));
+    FAIL() << "a rising p was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_TRUE(contains(e.what(), "inline table:4: row 3 (s = 2)")) << e.what();
+  }
+}
+
+TEST(Tabulated, ATableInRestDensityCSquaredMeansTheSameLawInAnSiScene) {
+  const std::string text = table_text('p', 0.2, 5.0, 40, law_pressure);
+  const double rest_density = 7850.0;  // kg/m^3
+  ParameterValues natural;
+  natural.set("rest_density", 1.0);
+  natural.set("table", text);
+  natural.set("table_units", std::string("scene"));
+  ParameterValues si = natural;
+  si.set_units(UnitSystem::si);
+  si.set("rest_density", rest_density);  // a material's numbers arrive natural, the table's rows as written
+  si.set("table_units", std::string("rest_density c^2"));
+  const auto a = build_material("tabulated", natural);
+  const auto b = build_material("tabulated", si);
+  for (double s : {0.3, 0.8, 1.0, 1.7, 4.0}) {
+    EXPECT_NEAR(b->pressure(Stretch::from_value(s)), rest_density * a->pressure(Stretch::from_value(s)),
+                1e-14 * rest_density)
+        << "s = " << s;
+    EXPECT_NEAR(b->pressure(Stretch::from_value(s)), rest_density * law_pressure(s), 1e-4 * rest_density);  // 40 rows
+  }
+  // The same rows read in the SI scene's own units are pascals: a law 1/(rest_density c^2) as stiff.
+  si.set("table_units", std::string("scene"));
+  const auto pascals = build_material("tabulated", si);
+  EXPECT_LT(std::abs(pascals->pressure(Stretch::from_value(0.5))), 1e-12 * rest_density * std::abs(law_pressure(0.5)));
+  si.set("table_units", std::string("pascal"));
+  try {
+    static_cast<void>(build_material("tabulated", si));
+    FAIL() << "an unknown table_units was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_TRUE(contains(e.what(), "'scene' or 'rest_density c^2'")) << e.what();
   }
 }
 

@@ -1,6 +1,6 @@
-// The independent references themselves: their closed-form laws follow from SPEC §1's
+// The independent references themselves: their closed-form laws follow from docs/physics.md's
 // definitions and agree with every registered built-in, their solutions satisfy the jump
-// conditions and reproduce SPEC §2's reference values, a linearly degenerate law's shock
+// conditions and reproduce docs/materials.md's reference values, a linearly degenerate law's shock
 // curve is its rarefaction curve, and a shock's dissipation is positive and cubic in its
 // strength. Nothing here calls the solvers.
 #include <gtest/gtest.h>
@@ -49,7 +49,7 @@ double derivative(const F& f, double x, double h) {
   return (f(x - 2 * h) - 8 * f(x - h) + 8 * f(x + h) - f(x + 2 * h)) / (12 * h);
 }
 
-/// Ψ(s) = ∫_{ln s}^0 c_s(e^u) du by composite 8-point Gauss–Legendre (SPEC §1).
+/// Ψ(s) = ∫_{ln s}^0 c_s(e^u) du by composite 8-point Gauss–Legendre (docs/physics.md).
 double psi_by_quadrature(const Law<double>& law, double s) {
   static constexpr std::array<double, 4> node = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
                                                  0.9602898564975363};
@@ -100,7 +100,7 @@ TEST(ClosedFormLaws, FollowFromTheStrainEnergyAsSpecDefinesThem) {
 
 TEST(ClosedFormLaws, EveryRegisteredBuiltinFollowsItsClosedForm) {
   // A factor wrong in a material's file (rigid's 1/2, hooke's R, ...) shows here: the
-  // registry's materials against SPEC §2 written out independently.
+  // registry's materials against docs/materials.md written out independently.
   int checked = 0;
   std::set<std::string> models;
   for (const MaterialSample& sample : registry_samples()) {
@@ -123,7 +123,7 @@ TEST(ClosedFormLaws, EveryRegisteredBuiltinFollowsItsClosedForm) {
   EXPECT_GT(checked, 30);
 }
 
-// ---- SPEC §2's reference values: a bar at velocity v against a fixed wall ---------------------
+// ---- docs/materials.md's reference values: a bar at velocity v against a fixed wall ---------------------
 
 TEST(ExactWall, ReproducesTheReferenceValuesOfSpec) {
   struct Case {

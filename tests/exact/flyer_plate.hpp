@@ -1,7 +1,7 @@
 #pragma once
 /// The symmetric flyer-plate impact of a light-speed material (`rigid`, `rigid_fluid`) in
 /// closed form: when and where the two release waves meet inside the target, which is where
-/// the rigid fluid spalls (SPEC §2: it carries no tension).
+/// the rigid fluid spalls (docs/materials.md: it carries no tension).
 ///
 /// A flyer of natural length l_f at velocity +v, its left end at x_f, and a target of natural
 /// length l_t at −v, its left end at x_t > x_f + l_f/γ, both unstrained at t = 0. Every front

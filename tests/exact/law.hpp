@@ -1,11 +1,11 @@
 #pragma once
-/// Material laws for the independent references (tests/exact): the laws of SPEC §2 written
+/// Material laws for the independent references (tests/exact): the laws of docs/materials.md written
 /// out in closed form from the spec's own formulas, with none of the rewriting for
 /// precision that materials/*.cpp does, so that a mistake in a material's file cannot be
 /// repeated here. A law is a function of the stretch s itself (not ln s): the references
 /// are meant for moderate states, where that costs nothing.
 ///
-///   p(s) = −W'(s),  e(s) = W(s)/s,  c_s² = s W''(s)/(e + p),  Ψ(s) = ∫_s^1 c_s(σ)/σ dσ   (SPEC §1)
+///   p(s) = −W'(s),  e(s) = W(s)/s,  c_s² = s W''(s)/(e + p),  Ψ(s) = ∫_s^1 c_s(σ)/σ dσ   (docs/physics.md)
 ///
 /// `MaterialLaw` adapts a registered Material through its p, e, c_s and Ψ only (never its
 /// inverses), for the tests that iterate over the registry.
@@ -71,7 +71,7 @@ class Law {
   [[nodiscard]] Real search_log_max() const { return std::fmin(log_s_max(), Real(40)); }
 };
 
-/// The built-in laws of SPEC §2.
+/// The built-in laws of docs/materials.md.
 enum class Model { rigid, hooke, rigid_fluid, constant_sound_speed };
 
 template <class Real>
@@ -79,7 +79,7 @@ class ClosedFormLaw final : public Law<Real> {
  public:
   /// `speed` is hooke's wave_speed V or constant_sound_speed's sound_speed V (ignored otherwise).
   ClosedFormLaw(Model model, Real rest_density, Real speed = Real(1)) : model_(model), rho_(rest_density), b_(speed) {
-    // V = 1 is `rigid` (SPEC §2); hooke's formulas divide by 1 − V².
+    // V = 1 is `rigid` (docs/materials.md); hooke's formulas divide by 1 − V².
     if (model_ == Model::hooke && b_ == Real(1)) model_ = Model::rigid;
   }
 

@@ -2,7 +2,7 @@
 /// Every registered material, built from its declared parameters, for the tests that claim
 /// "every material": the registry is iterated, never a list of names. Required numbers take
 /// values inside their declared ranges, required texts the samples of material_test_support.
-/// For the materials of SPEC §2 the closed-form law (exact/law.hpp) is given beside.
+/// For the materials of docs/materials.md the closed-form law (exact/law.hpp) is given beside.
 
 #include <algorithm>
 #include <map>
@@ -21,7 +21,7 @@ struct MaterialSample {
   std::string model;
   std::map<std::string, double> values;
   std::shared_ptr<const Material> material;
-  /// The closed form of SPEC §2, for the four built-in laws it gives; empty otherwise.
+  /// The closed form of docs/materials.md, for the four built-in laws it gives; empty otherwise.
   std::optional<ClosedFormLaw<double>> closed_form() const {
     const double rho = values.at("rest_density");
     if (model == "rigid") return rigid(rho);

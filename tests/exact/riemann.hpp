@@ -1,5 +1,5 @@
 #pragma once
-/// Independent exact solutions of relativistic elasticity in Lagrangian form (SPEC §1),
+/// Independent exact solutions of relativistic elasticity in Lagrangian form (docs/physics.md),
 /// for tests and the work-precision driver: Riemann problems of one or two materials, a
 /// state against a wall or piston, a free end, the exact rarefaction fan, shock speeds and
 /// the energy a shock dissipates. Written from the conservation laws alone, with plain
@@ -13,7 +13,7 @@
 ///
 /// A front moving at dX/dt = m between a left state a and a right state b satisfies
 /// m (U_b − U_a) = F_b − F_a for the labels and momentum; across a shock the energy removed
-/// per unit time is D = m [E] − [p v] (SPEC §1), [q] = q_b − q_a.
+/// per unit time is D = m [E] − [p v] (docs/physics.md), [q] = q_b − q_a.
 ///
 /// Waves: the C− wave (family −1) runs into the left state, the C+ wave (family +1) into
 /// the right state. Along a rarefaction (and every wave of a linearly degenerate material)
@@ -36,7 +36,7 @@ struct State {
   Real stretch = 1;
 };
 
-// ---- conserved densities and fluxes per unit label (SPEC §1) --------------------------------
+// ---- conserved densities and fluxes per unit label (docs/physics.md) --------------------------------
 
 template <class Real>
 Real velocity(const State<Real>& u) {
@@ -60,7 +60,7 @@ Real energy_flux(const Law<Real>& law, const State<Real>& u) {
   return law.pressure(u.stretch) * velocity(u);
 }
 
-/// Lagrangian speed dX/dt of the characteristic of family ±1: ± c_s / (s γ (1 ± v c_s)) (SPEC §1).
+/// Lagrangian speed dX/dt of the characteristic of family ±1: ± c_s / (s γ (1 ± v c_s)) (docs/physics.md).
 template <class Real>
 Real characteristic_speed(const Law<Real>& law, const State<Real>& u, int family) {
   const Real c = law.sound_speed(u.stretch), f = Real(family);

@@ -1,4 +1,4 @@
-// The run output directory (SPEC §5), written from hand-made Scene and RunResult values.
+// The run output directory (docs/cli.md, "What a run writes"), written from hand-made Scene and RunResult values.
 #include <gtest/gtest.h>
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-// Energy bookkeeping: a shock removes D = m [E] − [p v] per unit time (SPEC §1). The run
+// Energy bookkeeping: a shock removes D = m [E] − [p v] per unit time (docs/physics.md). The run
 // summary's energy_dissipated against the exact rate times the shock's lifetime, and the
 // rate computed from the jump itself against the exact one in extended precision, down to
 // shocks so weak that [E] and [p v] cancel to ten digits.

@@ -527,7 +527,7 @@ solver: )" +
               meeting.x_meet);
   EXPECT_NEAR(spall->t, meeting.t_meet, 0.01);  // ΔX = 0.01 in the target
   EXPECT_FALSE(fluid.warnings.empty());
-  // At t_end the fluid target is two pieces (SPEC §5: name.1, name.2 from left to right),
+  // At t_end the fluid target is two pieces (docs/cli.md, "What a run writes": name.1, name.2 from left to right),
   // where the front tracker, which parts it exactly, has them, to within a few cells; the
   // solid stays whole. Their momenta add up to the target's.
   Scene exact_scene = load_scene_string(

@@ -72,7 +72,7 @@ TEST(FormulaMaterial, TheRigidLawAsAFormulaRunsThePapersWallImpactAsRigidDoes) {
 
 TEST(FormulaMaterial, ConstantSoundSpeedWrittenAsAStrainEnergyRunsTheShockTubeAsTheBuiltIn) {
   const std::string tube = config("shock_tube.yaml");
-  // W = rho00 (s^-V^2 + V^2 s)/(1 + V^2), whose p = -W' is constant_sound_speed's (SPEC §2).
+  // W = rho00 (s^-V^2 + V^2 s)/(1 + V^2), whose p = -W' is constant_sound_speed's (docs/materials.md).
   const std::string formula = replaced(tube, "{model: constant_sound_speed, sound_speed: 0.5}",
                                        R"y({model: formula, strain_energy: "rest_density*(s^(-V^2) + V^2*s)/(1 + V^2)",
         parameters: {V: 0.5}, min_stretch: 0.05, max_stretch: 20

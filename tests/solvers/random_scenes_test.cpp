@@ -1,4 +1,4 @@
-// Randomized scenes (seeded): bodies of the four laws of SPEC §2, gaps, segments, walls,
+// Randomized scenes (seeded): bodies of the four laws of docs/materials.md, gaps, segments, walls,
 // bonded walls and pistons. Whatever the scene, the run must keep these properties:
 // finite outputs, no front faster than light, positive stretches, energy never
 // created, momentum changed only by walls and pistons, events in time order, and
@@ -180,7 +180,7 @@ TEST(RandomScenes, KeepEveryPhysicalProperty) {
     // Energy is never created: only walls' work adds it, shocks remove it; momentum changes
     // only by the walls' impulse. A run that certifies no error (every wave tracked exactly,
     // every jump condition met) closes its books to round-off, and a linearly degenerate one
-    // conserves energy across every jump (SPEC §1); a run that held back weak waves, merged
+    // conserves energy across every jump (docs/physics.md); a run that held back weak waves, merged
     // fronts or split fans (tolerance 0.05) closes them within what its bound allows.
     EXPECT_GE(c.energy_dissipated, 0.0);
     if (linearly_degenerate(scene)) {

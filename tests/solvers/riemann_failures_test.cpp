@@ -29,7 +29,7 @@ enum class Fault {
   law_under_compression,          ///< e + p is NaN for s < 0.2 (so the shock jump conditions fail)
 };
 
-/// The constant-sound-speed law of SPEC §2 written out (ρ00 = 1, k = 1 + V²):
+/// The constant-sound-speed law of docs/materials.md written out (ρ00 = 1, k = 1 + V²):
 /// p = V²/k (s^−k − 1), e + p = s^−k, c_s = V, Ψ = −V ln s; V = 1 is the rigid law, linearly
 /// degenerate. One function fails on purpose (Fault); everything else is exact.
 class FaultyFluid final : public Material {

@@ -1,4 +1,4 @@
-// Riemann problems without a classical solution for a physical reason (SPEC §4, exit 3): a side
+// Riemann problems without a classical solution for a physical reason (docs/cli.md, exit 3): a side
 // would leave its material's admissible range, crushed or, bonded, pulled beyond its largest
 // tension. The solver says which material, the impact and the limit, with the numbers of closed
 // forms; just inside the limit it solves; and the message states those numbers.

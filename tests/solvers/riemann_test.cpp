@@ -1,4 +1,4 @@
-// The exact Riemann solver against the jump conditions and the Riemann invariants (SPEC §1).
+// The exact Riemann solver against the jump conditions and the Riemann invariants (docs/physics.md).
 #include "rigidity/solvers/riemann.hpp"
 
 #include <gtest/gtest.h>
@@ -19,7 +19,7 @@ std::shared_ptr<const Material> make(const std::string& model, double rest_densi
   return build_material(model, values);
 }
 
-// Conserved densities and fluxes per unit label (SPEC §1).
+// Conserved densities and fluxes per unit label (docs/physics.md).
 double labels(const State& st) { return st.stretch.value() / std::cosh(st.rapidity); }
 double momentum(const Material& m, const State& st) {
   return m.enthalpy_density(st.stretch) * st.stretch.value() * std::sinh(st.rapidity);

@@ -1,4 +1,4 @@
-// Contacts that push but do not pull (SPEC §1): bodies separate exactly when the contact
+// Contacts that push but do not pull (docs/physics.md): bodies separate exactly when the contact
 // pressure would become negative. The paper's rebound after 2·t1 = 2·l0·s between two bars,
 // and the exact Riemann solver's parting rule for every material of the registry.
 #include <gtest/gtest.h>

@@ -23,7 +23,7 @@ constexpr double kStar = 1e-10;
 /// What front tracking holds exactly: the star state and the shock's speed.
 constexpr double kTracked = 1e-12;
 
-/// The label and momentum jump conditions m [τ] = −[v], m [M] = [p] (SPEC §1) across a front
+/// The label and momentum jump conditions m [τ] = −[v], m [M] = [p] (docs/physics.md) across a front
 /// of Lagrangian speed m between left state a and right state b, relative to the jumps.
 void expect_jump_conditions(const Material& m, const State& a, const State& b, double speed, double tolerance) {
   const double dv = std::tanh(b.rapidity) - std::tanh(a.rapidity);

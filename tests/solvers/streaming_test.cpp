@@ -1,4 +1,4 @@
-// Outputs streamed as the solvers produce them (SPEC §5): the same files as the
+// Outputs streamed as the solvers produce them (docs/cli.md, "What a run writes"): the same files as the
 // in-memory path, every event in events.csv, and runs that stop early (a budget, an
 // interrupt) or fail.
 #include <gtest/gtest.h>

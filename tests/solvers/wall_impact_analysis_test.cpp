@@ -1,5 +1,5 @@
 // The paper's experiment as a library call (rigidity/solvers/wall_impact.hpp), what
-// `rigidity compare` tabulates: against the closed forms of SPEC §2 and the independent
+// `rigidity compare` tabulates: against the closed forms of docs/materials.md and the independent
 // exact wall problem of tests/exact/, which shares no code with the Riemann solver.
 #include <gtest/gtest.h>
 
@@ -28,7 +28,7 @@ TEST(WallImpactAnalysis, RigidBarMatchesThePaper) {
 
 TEST(WallImpactAnalysis, HookeFrontRunsAtItsWaveSpeedAndCrushesAtIt) {
   // Linearly degenerate: the front runs at c_s(1) = V in the bar's frame, and J+ = φ carried
-  // to the wall gives Ψ* = artanh v, reachable while v < tanh Ψ_max = V (SPEC §2).
+  // to the wall gives Ψ* = artanh v, reachable while v < tanh Ψ_max = V (docs/materials.md).
   for (const double V : {0.3, 0.5, 0.9}) {
     const auto hooke = testing::make_material("hooke", {{"wave_speed", V}});
     const ImpactOutcome r = wall_impact(*hooke, 0.5 * V);

@@ -1,4 +1,4 @@
-// The paper's wall impact and its relatives, against closed forms (SPEC §2, paper §3.2).
+// The paper's wall impact and its relatives, against closed forms (docs/materials.md, paper §3.2).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -156,7 +156,7 @@ TEST(RigidWallImpact, ReferenceValuesOfTheSpec) {
 }
 
 TEST(HookeWallImpact, MatchesBrotas1980) {
-  // V = 0.5, v = 0.2 (SPEC §2): s = 0.6123724357, p = 1/9, front at V in the bar.
+  // V = 0.5, v = 0.2 (docs/materials.md): s = 0.6123724357, p = 1/9, front at V in the bar.
   const double V = 0.5, v = 0.2;
   const double s = 0.61237243569579452;  // sqrt(3/8)
   const SceneRun run = run_yaml(wall_impact_scene("{model: hooke, wave_speed: 0.5}", v, 6.0));

@@ -107,7 +107,7 @@ struct NumericTables {
     Solved<PiecewiseChebyshev> speeds = PiecewiseChebyshev::sample(w.breaks(), speed);
     if (!speeds.ok()) return false;
     cs = std::move(speeds.value);
-    psi = cs.integral(0.0).affine(-1.0, 0.0);  // Ψ = ∫_τ^0 c_s  (SPEC §1)
+    psi = cs.integral(0.0).affine(-1.0, 0.0);  // Ψ = ∫_τ^0 c_s  (docs/physics.md)
     // Beside s = 1: Ψ/τ = −(1/τ) ∫_0^τ c_s by Gauss–Legendre quadrature of the c_s table on
     // the panel, −c_s(0) at τ = 0.
     const std::vector<double>& b = psi.breaks();
@@ -493,7 +493,7 @@ double NumericMaterial::stiffness(Stretch s) const {
 double NumericMaterial::sound_speed(Stretch s) const {
   if (const NumericTables* t = tables_at(s)) {
     const double tau = s.log();
-    double square = t->sound_speed_squared(t->w.panel_of(tau), tau);  // c_s² = s W''/(e + p)  (SPEC §1)
+    double square = t->sound_speed_squared(t->w.panel_of(tau), tau);  // c_s² = s W''/(e + p)  (docs/physics.md)
     if (!(square > 0.0)) return 0.0;                                  // not hyperbolic
     if (square > 1.0 && square - 1.0 <= square * sound_speed_accuracy_) square = 1.0;  // c, within the accuracy
     return std::sqrt(square);
@@ -530,7 +530,7 @@ Solved<Estimate> NumericMaterial::sound_speed_estimate(Stretch s) const {
   if (!std::isfinite(curvature) || !std::isfinite(e_plus_p)) return Solved<Estimate>::failure(Status::not_converged);
   // e + p lost in its own error: c_s is undetermined, not a number to report.
   if (std::abs(e_plus_p) <= enthalpy.value.error) return Solved<Estimate>::failure(Status::not_converged);
-  double square = s.value() * curvature / e_plus_p;  // c_s² = s W''/(e + p)  (SPEC §1)
+  double square = s.value() * curvature / e_plus_p;  // c_s² = s W''/(e + p)  (docs/physics.md)
   if (!(square > 0.0)) return {Estimate{0.0, 0.0}};  // not hyperbolic
   const double relative_error =
       stiff.value.error / std::abs(curvature) + enthalpy.value.error / std::abs(e_plus_p) + 4.0 * kEpsilon;
@@ -542,7 +542,7 @@ Solved<Estimate> NumericMaterial::sound_speed_estimate(Stretch s) const {
 Solved<Estimate> NumericMaterial::riemann_psi_estimate(Stretch s) const {
   if (s.log() == 0.0) return {Estimate{0.0, 0.0}};
   Guarded sound_speed_of([this](Stretch sigma) { return sound_speed_estimate(sigma); });
-  // Ψ = ∫_s^1 c_s dσ/σ = ∫_{ln s}^0 c_s dτ  (SPEC §1)
+  // Ψ = ∫_s^1 c_s dσ/σ = ∫_{ln s}^0 c_s dτ  (docs/physics.md)
   const Solved<Estimate> psi = integrate(sound_speed_of, s.log(), 0.0, 0.0, sound_speed_accuracy_);
   if (sound_speed_of.status() != Status::ok) return Solved<Estimate>::failure(sound_speed_of.status());
   return psi;
@@ -648,7 +648,7 @@ Solved<Estimate> PressureLawMaterial::pressure_estimate(Stretch s) const {
 }
 
 Solved<Estimate> PressureLawMaterial::strain_energy_estimate(Stretch s) const {
-  // W(s) = W(1) − ∫_1^s p dσ = ρ00 − ∫_0^{ln s} p(e^τ) e^τ dτ  (p = −W', SPEC §1)
+  // W(s) = W(1) − ∫_1^s p dσ = ρ00 − ∫_0^{ln s} p(e^τ) e^τ dτ  (p = −W', docs/physics.md)
   auto force_density = [this](double tau) { return pressure_law_at_log(tau) * std::exp(tau); };
   const Solved<Estimate> work = integrate(force_density, 0.0, s.log(), kEpsilon * rest_density(), kWorkRelTol);
   if (!work.ok()) return work;

@@ -1,4 +1,4 @@
-// summary.json (SPEC §5): the run at a glance, in the scene's units.
+// summary.json (docs/cli.md, "What a run writes"): the run at a glance, in the scene's units.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -155,7 +155,7 @@ std::string summary_json(const Scene& scene, const RunResult& result) {
   w.member("momentum_initial", c.momentum_initial, Dimension::momentum_per_area);
   w.member("momentum_final", c.momentum_final, Dimension::momentum_per_area);
   w.member("wall_impulse", c.wall_impulse, Dimension::momentum_per_area);
-  // Beyond SPEC §5: the energy walls and pistons gave, so that the energy balance
+  // Beyond docs/cli.md, "What a run writes": the energy walls and pistons gave, so that the energy balance
   // energy_final = energy_initial + wall_work - energy_dissipated can be checked too.
   w.member("wall_work", c.wall_work, Dimension::energy_per_area);
   if (c.energy_droplets != 0.0 || c.momentum_droplets != 0.0) {

@@ -1,4 +1,4 @@
-// The run output directory (SPEC §5): summary.json, probes.csv, snapshots.csv,
+// The run output directory (docs/cli.md, "What a run writes"): summary.json, probes.csv, snapshots.csv,
 // fronts.csv, events.csv and resolved_scene.yaml, streamed into a temporary
 // directory as the solver produces them and renamed into place whole at the end.
 #include <array>

@@ -1,4 +1,4 @@
-// The strict scene loader (SPEC §3): text → one compact tree in one pass (scene_tree; the
+// The strict scene loader (docs/scenes.md): text → one compact tree in one pass (scene_tree; the
 // guards and --set overrides in scene_input) → values checked against the schema
 // (scene_checker, scene_schema) → the Scene, after the rules that relate keys to each other
 // (this file): references between names, bodies in order and not overlapping, walls outside

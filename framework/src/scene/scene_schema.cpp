@@ -1,4 +1,4 @@
-// The scene schema (SPEC §3): every key of a scene file, declared once.
+// The scene schema (docs/scenes.md): every key of a scene file, declared once.
 
 #include "rigidity/scene_schema.hpp"
 

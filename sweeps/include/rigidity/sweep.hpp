@@ -1,5 +1,5 @@
 #pragma once
-/// Parameter sweeps (SPEC §6): a base scene, parameters by their `--set` key paths
+/// Parameter sweeps (docs/sweeps.md): a base scene, parameters by their `--set` key paths
 /// (grids crossed or zipped, or seeded random samples), and figures of merit collected
 /// per case into one table, sweep.csv. Cases run in-process, on threads; an invalid or
 /// inadmissible case is a row with its exit code and message, never a stop.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Generates the tables of the `tabulated` material the tests read: the constant_sound_speed law
-# (SPEC §2) with V = 0.5, as p(s) and as e(s), in units of rest_density c², at stretches
+# (docs/materials.md) with V = 0.5, as p(s) and as e(s), in units of rest_density c², at stretches
 # ln-spaced from 0.01 to 100 (41 rows, s = 1 exactly in the middle). Run from this directory:
 #   bash generate.sh
 set -euo pipefail

@@ -1,5 +1,5 @@
 #pragma once
-/// Typed errors of rigidity and the exit status each maps to (SPEC §4).
+/// Typed errors of rigidity and the exit status each maps to (docs/cli.md).
 ///
 ///   InputError        exit 2  the scene (or a command-line argument) is invalid
 ///   InadmissibleError exit 3  the scene is valid but has no classical solution

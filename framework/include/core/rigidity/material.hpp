@@ -1,6 +1,6 @@
 #pragma once
 /// The material interface. A material is its strain energy W(s): the rest-frame
-/// energy per unit natural length (per unit area), rest mass included (SPEC §1):
+/// energy per unit natural length (per unit area), rest mass included (docs/physics.md):
 ///
 ///   p(s)   = -W'(s)                  pressure, compression positive
 ///   e(s)   = W(s)/s                  rest-frame energy density (the paper's ρ0 c²)

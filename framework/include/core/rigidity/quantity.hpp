@@ -1,5 +1,5 @@
 #pragma once
-/// Output quantities (SPEC §5): X label, x lab position, v, s, p, e, rho, gamma, cs.
+/// Output quantities (docs/cli.md, "What a run writes"): X label, x lab position, v, s, p, e, rho, gamma, cs.
 
 #include <optional>
 #include <string_view>

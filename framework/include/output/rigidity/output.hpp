@@ -1,5 +1,5 @@
 #pragma once
-/// Run outputs (SPEC §5): summary.json, probes.csv, snapshots.csv, fronts.csv,
+/// Run outputs (docs/cli.md, "What a run writes"): summary.json, probes.csv, snapshots.csv, fronts.csv,
 /// events.csv, resolved_scene.yaml, converted to the scene's units. The directory is
 /// written as a whole or not at all: files go to a temporary sibling that is renamed
 /// into place at the end. No NaN or inf is ever written: a non-finite value is a

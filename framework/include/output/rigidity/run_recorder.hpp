@@ -1,6 +1,6 @@
 #pragma once
 /// Where a solver sends its outputs as it produces them, and whom its main loop asks
-/// whether to go on (SPEC §5).
+/// whether to go on (docs/cli.md, "What a run writes").
 ///
 /// A solver hands every front segment, probe sample, snapshot sample and event to a
 /// RunRecorder the moment it has it, and keeps none of them itself: the memory a run

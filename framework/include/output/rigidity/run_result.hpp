@@ -1,5 +1,5 @@
 #pragma once
-/// What a solver hands back: everything the run outputs of SPEC §5 are written
+/// What a solver hands back: everything the run outputs of docs/cli.md, "What a run writes" are written
 /// from, in natural units. Only what the scene's outputs asked for is filled.
 /// Fronts, samples and events go to a RunRecorder (run_recorder.hpp) as the solver
 /// produces them; the vectors below hold them when the recorder keeps them in memory

@@ -1,5 +1,5 @@
 #pragma once
-/// A validated scene (SPEC §3), in natural units (c = 1), ready for a solver.
+/// A validated scene (docs/scenes.md), in natural units (c = 1), ready for a solver.
 /// Produced only by the scene loader, which has checked every rule; solvers may
 /// rely on it (bodies ordered left to right and not overlapping, |v| < 1, s admissible).
 

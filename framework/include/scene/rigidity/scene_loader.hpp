@@ -1,5 +1,5 @@
 #pragma once
-/// The strict YAML scene loader (SPEC §3). Every key is declared; anything else —
+/// The strict YAML scene loader (docs/scenes.md). Every key is declared; anything else —
 /// an unknown key (with the nearest valid one), a wrong type, a value out of range,
 /// NaN or inf, a missing required key, an inconsistent combination — throws
 /// InputError "FILE:LINE:COL: error: key 'k': rule". Nothing is run on an invalid scene.

@@ -1,5 +1,5 @@
 #pragma once
-/// The scene schema (SPEC §3) as data: every key a scene file may hold, declared once
+/// The scene schema (docs/scenes.md) as data: every key a scene file may hold, declared once
 /// with its type, default, dimension, range and doc. The loader walks each file
 /// against this declaration (the keys the file has, so that no typo passes unseen,
 /// and the keys the schema has, so that no required key is missed); documentation

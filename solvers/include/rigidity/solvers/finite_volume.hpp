@@ -3,7 +3,7 @@
 /// physicist would write first, to measure the exact front tracking against.
 ///
 /// Lagrangian (label) coordinates X, conservative Godunov-type update of the
-/// conserved variables per unit label (SPEC §1)
+/// conserved variables per unit label (docs/physics.md)
 ///
 ///     U = (s/γ, (e+p) s γ v),      F(U) = (−v, p),      ∂t U + ∂X F = 0,
 ///
@@ -12,7 +12,7 @@
 /// - `solver.order: 1`: piecewise-constant states (Godunov 1959).
 ///   `solver.order: 2`: MUSCL–Hancock (van Leer 1979; Toro §14.4) on the Riemann
 ///   invariants J± = φ ± Ψ(s), the exact characteristic variables of the system:
-///   MC-limited slopes, and the half-step predictor ∂t J± + λ± ∂X J± = 0 (SPEC §1).
+///   MC-limited slopes, and the half-step predictor ∂t J± + λ± ∂X J± = 0 (docs/physics.md).
 /// - `solver.flux: exact`: Godunov's flux from the exact Riemann problem,
 ///   F = (−v*, p*) (solve_riemann). `solver.flux: hll`: HLL (Harten, Lax & van Leer
 ///   1983) with the Lagrangian wave-speed estimates
@@ -70,7 +70,7 @@ namespace rigidity {
 
 namespace finite_volume {
 
-/// U = (s/γ, (e+p) s γ v): labels and momentum per unit label (SPEC §1).
+/// U = (s/γ, (e+p) s γ v): labels and momentum per unit label (docs/physics.md).
 using Conserved = Eigen::Vector2d;
 /// F = (−v, p): fluxes of labels and momentum through a face, per unit time.
 using Flux = Eigen::Vector2d;

@@ -1,5 +1,5 @@
 #pragma once
-/// Exact Riemann problems of relativistic elasticity in Lagrangian form (SPEC §1).
+/// Exact Riemann problems of relativistic elasticity in Lagrangian form (docs/physics.md).
 ///
 /// A state is (rapidity φ, stretch s). Two states meeting at a point resolve into a
 /// left-moving wave (C− family) into the left state, a right-moving wave (C+) into
@@ -131,7 +131,7 @@ void characteristic_speeds_both(const Material& material, const State& state, Fr
 [[nodiscard]] bool wave_is_shock(const Material& material, const State& outer, Stretch star, int family);
 
 /// The rapidity of the state at stretch `star` that a shock of family `family` connects to
-/// `outer`. The jump conditions hold in the lab frame (SPEC §1: m [τ] = −[v], m [M] = [p]);
+/// `outer`. The jump conditions hold in the lab frame (docs/physics.md: m [τ] = −[v], m [M] = [p]);
 /// since a shock of an elastic material dissipates energy, the momentum condition alone is
 /// not Lorentz covariant, and the outer state's rest frame gives a slightly different curve
 /// unless the outer state is at rest in the lab (third order in the strength). So: first the
@@ -177,7 +177,7 @@ Solved<double> hugoniot_rapidity(const State& outer, const JumpLaws& at_outer, S
 /// Lab-frame speed dx/dt of that characteristic.
 [[nodiscard]] double characteristic_lab_speed(const Material& material, const State& state, int family);
 
-/// Conserved densities per unit label (SPEC §1): labels s/γ (the lab length of a unit
+/// Conserved densities per unit label (docs/physics.md): labels s/γ (the lab length of a unit
 /// of label), momentum (e+p) s γ v, energy ((e+p)γ² − p) s/γ, rest energy included.
 [[nodiscard]] double label_density(const State& state);
 [[nodiscard]] double momentum_density(const Material& material, const State& state);
@@ -227,7 +227,7 @@ struct LabelJump {
 /// label_jump with hyperbolic(a.rapidity) at hand.
 [[nodiscard]] LabelJump label_jump(const State& a, const Hyperbolic& at_a, const State& b);
 
-/// The energy a shock removes per unit time and area, D = m [E] − [p v] (SPEC §1), between its
+/// The energy a shock removes per unit time and area, D = m [E] − [p v] (docs/physics.md), between its
 /// left and right states (one material, joined by the label and momentum jump conditions; m
 /// from the label condition). D is cubic in the strength of a weak shock while [E] and [p v]
 /// are linear: it is computed from the jump itself, without that cancellation, as
