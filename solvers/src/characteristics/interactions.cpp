@@ -182,7 +182,7 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   double carried[2] = {0.0, 0.0};
   SmoothIn smooth_in;
   smooth_in.add(na.family > 0 ? 1 : 0, na.smooth, false);
-  smooth_in.add(nb.family > 0 ? 1 : 0, nb.smooth, na.family == nb.family);
+  smooth_in.add(nb.family > 0 ? 1 : 0, nb.smooth, na.family == nb.family && converge(na, nb));
   for (Node* n : {&na, &nb}) {
     const int k = n->family > 0 ? 1 : 0;
     carried[k] += n->carried;
@@ -613,7 +613,8 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   SmoothIn smooth_in;
   double offset_in[2] = {0.0, 0.0};
   int count_in[2] = {0, 0};
-  int families_in[2] = {kNone, kNone};  // the piece each family came in from
+  int families_in[2] = {kNone, kNone};      // the piece each family came in from
+  bool compressive_in[2] = {false, false};  // the last front of each family was compressive
   for (int id : group) {
     Node& n = nodes_[id];
     const double defect = close_defect(n, t);
@@ -623,7 +624,8 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
       continue;
     }
     const int f = n.family > 0 ? 1 : 0;
-    smooth_in.add(f, n.smooth, families_in[f] == n.piece);
+    smooth_in.add(f, n.smooth, families_in[f] == n.piece && compressive_in[f] && n.front_kind == FrontKind::shock);
+    compressive_in[f] = n.front_kind == FrontKind::shock;
     offset_in[f] += n.offset;
     ++count_in[f];
     families_in[f] = n.piece;

@@ -62,7 +62,7 @@ int Tracker::strip_edge(int from, int family, int Node::*step) const {
   int id = from;
   for (;;) {
     const Node& n = nodes_[id];
-    if (n.kind != NodeKind::front || !n.smooth || n.family == family) return id;
+    if (n.kind != NodeKind::front || !n.smooth || (n.family == family && !superposed(id, family))) return id;
     id = n.*step;
   }
 }
@@ -190,7 +190,7 @@ bool Tracker::reconstruct(int n, double X, double t, State& state, double& dx) c
 
 double Tracker::reconstruction_error(int id, double t) const {
   const Node& n = nodes_[id];
-  if (!n.smooth) return kInf;
+  if (!n.smooth || superposed(id, n.family)) return kInf;  // a jump on top of the line
   const int l = strip_edge(n.prev, n.family, &Node::prev);
   const int r = strip_edge(n.next, n.family, &Node::next);
   const double left = is_step(l, n.family) ? wedge(l, id, n.family, t).slope : std::nan("");

@@ -335,10 +335,19 @@ struct EventLater {
 
 /// Which waves leaving an interaction go on as smooth waves, from the fronts that came in. A
 /// wave of family f is smooth if a smooth step came in, no front of family f that came in was
-/// a true jump (a shock or a jump goes on as itself), no two of family f met (steps of a
-/// compression wave that meet make a shock, which is sharp, while what they reflect is
-/// smooth) and, where the meeting is at an end, an interface or a contact, no front that came
-/// in was a true jump (its reflection and transmission are jumps too).
+/// a true jump (a shock or a jump goes on as itself), no two compressive fronts of family f
+/// met (steps of a compression wave that meet make a shock, which is sharp, while what they
+/// reflect is smooth; a compression step that overtakes a weak expansive one of its family
+/// only cancels part of it, see converge) and, where the meeting is at an end, an interface
+/// or a contact, no front that came in was a true jump (its reflection and transmission are
+/// jumps too).
+/// Whether two fronts of one family that meet are steps of a compression wave converging
+/// into a shock: both compressive. Where one is expansive (a rarefaction step, or a weak wave
+/// that an interaction left behind in a compression wave) they cancel, and no shock forms.
+[[nodiscard]] inline bool converge(const Node& a, const Node& b) {
+  return a.front_kind == FrontKind::shock && b.front_kind == FrontKind::shock;
+}
+
 struct SmoothIn {
   bool any_smooth = false, any_sharp = false, structure = false;
   bool sharp[2] = {false, false}, met[2] = {false, false};  ///< [0] C−, [1] C+
@@ -649,9 +658,20 @@ class Tracker {
     const Node& n = nodes_[id];
     return n.kind == NodeKind::front && n.smooth && n.family == family && !unsplit(id);
   }
+  /// A smooth step of `family` weaker than kSuperposed fan steps: a weak wave superposed on
+  /// the wave it runs in (what a shock reflects as it forms or takes in steps, and what that
+  /// becomes at an end), not a sample of it. The line of the wave is drawn past it, and its
+  /// jump stays a jump on top (a staircase of strength ~ fan step³ in a compression wave).
+  [[nodiscard]] bool superposed(int id, int family) const {
+    const Node& n = nodes_[id];
+    return n.kind == NodeKind::front && n.smooth && n.family == family &&
+           std::abs(own_jump(id)) < kSuperposed * fan_step_;
+  }
+  static constexpr double kSuperposed = 0.1;
   /// Walking from node `from` towards `step` (&Node::prev or &Node::next) past smooth steps of
-  /// the other family: the first node that is a front of `family`, or anything that bounds
-  /// the strip a smooth wave of `family` may fill (an end, an interface, a true jump).
+  /// the other family and superposed ones of `family`: the first node that is a front of
+  /// `family`, or anything that bounds the strip a smooth wave of `family` may fill (an end,
+  /// an interface, a true jump).
   [[nodiscard]] int strip_edge(int from, int family, int Node::*step) const;
   /// The line of `family`'s invariant over the strip between its smooth steps a < b at time t:
   /// through the values at the steps' own characteristics, each its two sides' values weighted
