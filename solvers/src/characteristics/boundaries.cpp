@@ -266,6 +266,28 @@ void Tracker::flush_wall(int side, double t) {
   w.pressure_since = t;
 }
 
+double Tracker::ramp_ahead_error(double t) const {
+  double error = 0.0;
+  for (int side = 0; side < 2; ++side) {
+    const Wall& w = walls_[side];
+    if (!w.motion.ramps || w.attached == kNone) continue;
+    const double since = w.motion.times[w.segment];  // when the piston took its last step
+    if (!(t > since)) continue;
+    const Node& end = nodes_[w.attached];
+    const Region& r = end.kind == NodeKind::left_end ? end.right : nodes_[end.prev].right;
+    if (r.material == nullptr) continue;
+    // The characteristics that left the piston since then carry its ramp's value, the staircase
+    // the step's: off by 2 |ramp − step| in |δφ| + |δΨ| (the wave is simple next to the piston).
+    constexpr int kPoints = 16;
+    double off = 0.0;
+    for (int i = 0; i < kPoints; ++i)
+      off += std::abs(ramp_rapidity(w.motion, since + (i + 0.5) / kPoints * (t - since)) - w.rapidity);
+    const double speed = std::abs(speeds_of(r, side == 0 ? +1 : -1).lagrangian);
+    error += 2.0 * off / kPoints * speed * (t - since);
+  }
+  return error;
+}
+
 void Tracker::split_piece(int left_node, int right_node, const State& left_state, const State& right_state,
                           const Region& left_region, const Region& right_region, double t, double X, double x) {
   // The piece parts between left_node and right_node (either may be an end of the

@@ -242,6 +242,7 @@ RunResult Tracker::run() {
   for (const LightPiece& lp : light_)
     for (const std::deque<LightFront>* queue : {&lp.plus, &lp.minus})
       for (const LightFront& f : *queue) carried_alive += f.carried;
+  error_fans_alive += ramp_ahead_error(t_end);
   // Each error was measured when it was made. Those of merges and fan steps travel with the
   // waves they were made on, and where a wave splits at an interface or an end its error
   // splits with it, grown or shrunk as the outgoing waves are (share_carried): what the

@@ -491,6 +491,9 @@ class Tracker {
                    const int count_in[2], double t);
   /// The rapidity of a linearly interpolated piston's ramp at time t (its rows as written).
   static double ramp_rapidity(const PistonMotion& motion, double t);
+  /// The L1 error at time t of the region a ramping piston has left behind its last step: its
+  /// characteristics carry the ramp's rapidity, the staircase holds the step's until the next.
+  [[nodiscard]] double ramp_ahead_error(double t) const;
   /// The states of the wave of `family` from `outer` to `star`: a new rarefaction fan (`fresh`:
   /// no step of a smooth wave came in) in steps of fan_step_ in Ψ, and in at least
   /// kMinFanSteps where steps of 2 × the resolution would make as many; a step going on, one.

@@ -57,8 +57,9 @@ struct PistonMotion {
 
 /// A piston whose velocity ramps linearly between the rows of its table (times, rapidities),
 /// as a staircase: each ramp split into steps of at most `step` in rapidity (at most 1000 per
-/// row), each step at the velocity of the ramp at its middle; after the last row the velocity
-/// stays.
+/// row), each holding the velocity of the ramp at its middle, each step taken when the ramp has
+/// the mean of the values on its two sides (so that it leaves on that value's characteristic,
+/// across the kinks between rows too); after the last row the velocity stays.
 [[nodiscard]] PistonMotion linear_piston(const std::vector<double>& times, const std::vector<double>& rapidities,
                                          double step);
 
