@@ -66,6 +66,16 @@ struct Wall {
   }
 };
 
+/// A pressure applied to the outer end of the row of bodies (a traction boundary): p =
+/// pressures[i] from times[i] on.
+struct Traction {
+  bool present = false;
+  std::vector<double> times, pressures;
+  std::size_t segment = 0;
+  [[nodiscard]] double pressure() const { return pressures[segment]; }
+  [[nodiscard]] double next_change() const { return segment + 1 < times.size() ? times[segment + 1] : kInf; }
+};
+
 /// Where two neighbours in lab order meet. Junction j is left of body j: junction 0
 /// is the left boundary, junction B (B bodies) the right one.
 ///
@@ -210,6 +220,7 @@ class Scheme {
   std::vector<Body> bodies_;
   std::vector<Junction> junctions_;
   Wall walls_[2];
+  Traction traction_[2];
 
   SampleSchedule samples_{scene_};
   RunResult result_;
@@ -309,8 +320,9 @@ void Scheme::build_walls() {
   junctions_.assign(bodies_.size() + 1, Junction{});
   for (int side = 0; side < 2; ++side) {
     const BoundaryDecl& d = *decls[side];
+    if (d.type == BoundaryType::traction) traction_[side] = Traction{true, d.traction_times, d.traction_pressures, 0};
     Wall& w = walls_[side];
-    w.present = d.type != BoundaryType::free;
+    w.present = stands(d.type);
     if (!w.present) continue;
     w.bonded = d.bonded;
     w.x = d.position;
@@ -349,6 +361,17 @@ bool Scheme::ghost_invariants(int b, int side, int c, double& j_plus, double& j_
     const double phi_wall = walls_[j == 0 ? 0 : 1].rapidity;
     j_plus = 2.0 * phi_wall - (phi - psi);
     j_minus = 2.0 * phi_wall - (phi + psi);
+    return true;
+  }
+  if (boundary && traction_[j == 0 ? 0 : 1].present) {
+    // Mirror about the end's pressure: φ_g = φ, Ψ_g = 2 Ψ(p) − Ψ.
+    const Material& m = *material_[c];
+    const Solved<Stretch> held =
+        m.stretch_at_pressure(std::max(traction_[j == 0 ? 0 : 1].pressure(), m.cavitation_pressure()));
+    if (!held.ok()) return false;
+    const double psi_held = m.riemann_psi(held.value);
+    j_plus = phi + 2.0 * psi_held - psi;
+    j_minus = phi - 2.0 * psi_held + psi;
     return true;
   }
   // Mirror about a free end: φ_g = φ, Ψ_g = 2 Ψ_free − Ψ.
@@ -491,6 +514,8 @@ void Scheme::junction_flux(int j, double t) {
       sol = solve_wall(m, st, side, w.rapidity,
                        w.bonded ? m.cavitation_pressure() : std::max(0.0, m.cavitation_pressure()));
       junction.parted = sol.parted;
+    } else if (const Traction& held = traction_[left_boundary ? 0 : 1]; held.present) {
+      sol = solve_traction_end(m, st, side, held.pressure());
     } else {
       sol = solve_free_end(m, st, side);
     }
@@ -574,6 +599,14 @@ void Scheme::advance(double dt) {
   }
   const int last = static_cast<int>(bodies_.size());
   for (int side = 0; side < 2; ++side) {
+    if (traction_[side].present) {
+      // The traction pushes the end with force p towards the body, at the end's velocity.
+      const FaceFlux& f = side == 0 ? face_[left_face(bodies_.front().first)]
+                                    : face_[right_face(bodies_.back().first + bodies_.back().count - 1)];
+      const double force = side == 0 ? f.pressure : -f.pressure;
+      impulse_ += force * dt;
+      wall_work_ += force * (side == 0 ? f.velocity_right : f.velocity_left) * dt;
+    }
     Wall& w = walls_[side];
     if (!w.present) continue;
     const Junction& junction = junctions_[side == 0 ? 0 : last];
@@ -878,6 +911,8 @@ RunResult Scheme::run() {
     target = std::min(target, samples_.next_time());
     for (const Wall& w : walls_)
       if (w.present) target = std::min(target, w.next_change());
+    for (const Traction& held : traction_)
+      if (held.present) target = std::min(target, held.next_change());
 
     const double stable = stable_step();
     if (!(stable > 0.0) || !std::isfinite(stable)) {
@@ -919,6 +954,8 @@ RunResult Scheme::run() {
         w.rapidity = w.motion.rapidities[w.segment];
       }
     }
+    for (Traction& held : traction_)
+      while (held.present && held.next_change() <= t_next) ++held.segment;
     update_junctions(t, t_next);
     recover(t_next);
     t = t_next;

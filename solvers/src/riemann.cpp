@@ -729,6 +729,17 @@ RiemannSolution solve_free_end(const Material& m, const State& state, Side side)
   return out;
 }
 
+RiemannSolution solve_traction_end(const Material& m, const State& state, Side side, double pressure) {
+  const double held = std::max(pressure, m.cavitation_pressure());
+  const WaveCurve curve(m, state, side);
+  const Outcome<State> pt = state_at_pressure(curve, held);
+  if (!pt.ok()) return failed(pt);
+  RiemannSolution out;
+  out.pressure = held;
+  out.left = out.right = pt.value;
+  return out;
+}
+
 double label_density(const State& st) { return st.stretch.value() / std::cosh(st.rapidity); }
 
 double momentum_density(const Material& m, const State& st) {

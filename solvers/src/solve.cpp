@@ -79,7 +79,7 @@ std::string judge_inadmissible_stop(RunResult& result, UnitSystem units) {
 }
 
 std::optional<WallMeeting> walls_meet(const Scene& scene) {
-  if (scene.left.type == BoundaryType::free || scene.right.type == BoundaryType::free) return std::nullopt;
+  if (!stands(scene.left.type) || !stands(scene.right.type)) return std::nullopt;
   // Both walls move on straight lines between the changes of either: the room between them
   // is linear on each leg, and they meet on the first leg where it reaches zero.
   double t = 0.0, x_left = scene.left.position, x_right = scene.right.position;

@@ -199,6 +199,93 @@ TEST(Piston, ARampsStaircaseIsWithinTheBoundOfTheExactPush) {
   EXPECT_LT(fine, coarse / 5.0) << "the steps are characteristics: second order";
 }
 
+// A traction holds the end at a given pressure. A rigid rod (rho00 = 1) at rest, held at
+// p = 0.5 on its left end, free on its right: with a = ln(1 + 2p)/2 (Psi of the rigid law at
+// that pressure; J- = 0 carried across the C+ wave, so phi = Psi), the face moves at tanh a =
+// p/(1 + p) until the release from the free end comes back (t = 1.5), then at tanh 3a
+// (J- = 2a from the release, Psi = a again): 1/3, then 7/9. The traction gives the impulse
+// p t and does the work p times the face's displacement.
+TEST(Traction, ARigidRodHeldAtAPressureMovesAsTheClosedFormSays) {
+  const double p = 0.5;
+  for (const std::string method : {"characteristics", "finite_volume"}) {
+    SCOPED_TRACE(method);
+    const RunResult r = solve(load_scene_string(R"(
+name: traction
+materials: {rod: {model: rigid}}
+bodies: [{name: rod, material: rod, length: 1.0, velocity: 0.0}]
+boundaries:
+  left: {type: traction, pressure: 0.5}
+  right: {type: free}
+solver: {method: )" + method + R"(, cells: 400}
+time: {end: 3.0}
+outputs: {probes: [{name: face, body: rod, at: left, quantities: [p, v, x], every: 0.25}]}
+)",
+                                                "<test>"));
+    const double a = 0.5 * std::log1p(2.0 * p);
+    const double exact = method == "characteristics" ? 1e-14 : 2e-3;
+    for (double t : {0.25, 0.75, 1.25}) {
+      EXPECT_NEAR(probe_value(r, t, Quantity::p), p, exact * 10) << t;
+      EXPECT_NEAR(probe_value(r, t, Quantity::v), p / (1.0 + p), exact) << t;
+      EXPECT_NEAR(probe_value(r, t, Quantity::x), t * p / (1.0 + p), exact) << t;
+    }
+    for (double t : {1.75, 2.5, 3.0}) {
+      EXPECT_NEAR(probe_value(r, t, Quantity::v), std::tanh(3.0 * a), exact) << t;
+      EXPECT_NEAR(probe_value(r, t, Quantity::x), 1.5 / 3.0 + (t - 1.5) * 7.0 / 9.0, exact) << t;
+    }
+    const Conservation& c = r.conservation;
+    EXPECT_NEAR(c.wall_impulse, p * 3.0, 1e-12);
+    EXPECT_NEAR(c.wall_work, p * (0.5 + 1.5 * 7.0 / 9.0), method == "characteristics" ? 1e-12 : 2e-3);
+    EXPECT_NEAR(c.momentum_final - c.momentum_initial, c.wall_impulse, 1e-12);
+  }
+}
+
+// A gas bar (constant_sound_speed, V = 0.5) at rest against a wall, pushed at its free end by a
+// pressure pulse: 0.3 until t = 0.5, then a pull of 0.05. The face holds the state the
+// independent exact wave curves give: the shock from rest to p = 0.3, then from that state
+// the fan to p = -0.05. Both solvers; the energy the traction puts in is its work.
+TEST(Traction, APressurePulseOnAGasBarGivesTheExactWaveStates) {
+  const exact::ClosedFormLaw<double> gas = exact::constant_sound_speed<double>(1.0, 0.5);
+  const exact::Wave<double> push = exact::wave_to_pressure(gas, exact::State<double>{0.0, 1.0}, +1, 0.3);
+  const exact::Wave<double> pull = exact::wave_to_pressure(gas, push.star, +1, -0.05);
+  ASSERT_EQ(push.kind, exact::WaveKind::shock);
+  ASSERT_EQ(pull.kind, exact::WaveKind::fan);
+  for (const std::string method : {"characteristics", "finite_volume"}) {
+    SCOPED_TRACE(method);
+    const RunResult r = solve(load_scene_string(R"(
+name: pulse
+materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}
+bodies: [{name: bar, material: gas, length: 1.0, velocity: 0.0}]
+boundaries:
+  left: {type: traction, pressure_table: [[0, 0.3], [0.5, -0.05]]}
+  right: {type: wall}
+solver: {method: )" + method + R"(, tolerance: 1e-6, cells: 800}
+time: {end: 1.5}
+outputs: {probes: [{name: face, body: bar, at: left, quantities: [p, v, s], every: 0.25}]}
+)",
+                                                "<test>"));
+    const double close = method == "characteristics" ? 1e-9 : 1e-4;
+    for (double t : {0.25}) {
+      EXPECT_NEAR(probe_value(r, t, Quantity::p), 0.3, close) << t;
+      EXPECT_NEAR(probe_value(r, t, Quantity::v), std::tanh(push.star.rapidity), close) << t;
+      EXPECT_NEAR(probe_value(r, t, Quantity::s), push.star.stretch, close) << t;
+    }
+    for (double t : {0.75, 1.0}) {  // before the shock's reflection from the wall comes back
+      EXPECT_NEAR(probe_value(r, t, Quantity::p), -0.05, close) << t;
+      EXPECT_NEAR(probe_value(r, t, Quantity::v), std::tanh(pull.star.rapidity), close) << t;
+      EXPECT_NEAR(probe_value(r, t, Quantity::s), pull.star.stretch, close) << t;
+    }
+    const Conservation& c = r.conservation;
+    // The traction's impulse and the wall's (once the shock reaches it) are the momentum.
+    EXPECT_GT(c.wall_work, 0.0);
+    EXPECT_NEAR(c.momentum_residual(), 0.0, 1e-9);
+    // The books of the front tracker close with the work of the traction and what its shocks
+    // dissipated (finite volume's dissipation is what its books leave).
+    if (method == "characteristics") {
+      EXPECT_NEAR(c.energy_residual(), 0.0, 1e-9);
+    }
+  }
+}
+
 /// A rigid bar of length 1 between a piston on the left and one on the right; tables as given.
 Scene squeezed_bar(const std::string& left_table, const std::string& right_table, double t_end,
                    const std::string& method = "characteristics") {

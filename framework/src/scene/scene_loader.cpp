@@ -218,9 +218,31 @@ class SceneBuilder {
 
   void read_boundary(Checked& side, bool left, const Scene& scene, BoundaryDecl& out) const {
     const std::string& type = side["type"].word;
-    out.type = type == "wall" ? BoundaryType::wall : type == "piston" ? BoundaryType::piston : BoundaryType::free;
+    out.type = type == "wall"       ? BoundaryType::wall
+               : type == "piston"   ? BoundaryType::piston
+               : type == "traction" ? BoundaryType::traction
+                                    : BoundaryType::free;
     out.where = where(side);
     if (out.type == BoundaryType::free) return;
+    if (out.type == BoundaryType::traction) {
+      if (const Checked* pressure = side.find("pressure")) {
+        out.traction_times = {0.0};
+        out.traction_pressures = {pressure->number};
+        return;
+      }
+      const Checked& table = side["pressure_table"];
+      for (std::size_t i = 0; i < table.entries.size(); ++i) {
+        const Checked& t = table.entries[i].entries[0];
+        if (i == 0 && t.number != 0.0)
+          checker_.fail(t, "the pressure's history must start at t = 0, got " + written(t.number, Dimension::time));
+        if (i > 0 && !(t.number > out.traction_times.back()))
+          checker_.fail(t, "times must increase strictly: " + written(t.number, Dimension::time) + " follows " +
+                               written(out.traction_times.back(), Dimension::time));
+        out.traction_times.push_back(t.number);
+        out.traction_pressures.push_back(table.entries[i].entries[1].number);
+      }
+      return;
+    }
     out.bonded = side["bonded"].flag;
 
     const double end = left ? scene.bodies.front().position : right_ends_.back();

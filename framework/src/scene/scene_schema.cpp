@@ -201,10 +201,24 @@ Key boundary_key(const std::string& side) {
                              {Key::number("t", "from this time on").in(Dimension::time).at_least(0.0),
                               velocity("v", "the piston moves at this velocity")},
                              "[t, v]");
+  const Key pressure_row =
+      Key::tuple("",
+                 {Key::number("t", "from this time on").in(Dimension::time).at_least(0.0),
+                  Key::number("p", "the pressure applied to the end (> 0 pushes, < 0 pulls)").in(Dimension::pressure)},
+                 "[t, p]");
   Key end = Key::map(side,
                      {
-                         Key::choice("type", {"free", "wall", "piston"}, "free end (p = 0), fixed wall, moving piston")
+                         Key::choice("type", {"free", "wall", "piston", "traction"},
+                                     "free end (p = 0), fixed wall, moving piston, end held at a given pressure")
                              .defaults_to(std::string("free")),
+                         Key::number("pressure", "constant pressure applied to the end (> 0 pushes, < 0 pulls)")
+                             .in(Dimension::pressure)
+                             .only_when("type", {"traction"}),
+                         Key::list("pressure_table", pressure_row,
+                                   "history of the pressure applied to the end, t increasing from 0; each row's "
+                                   "pressure holds until the next row")
+                             .items(1)
+                             .only_when("type", {"traction"}),
                          Key::boolean("bonded", "the wall or piston pulls as well as pushes")
                              .defaults_to(false)
                              .only_when("type", held),
@@ -225,6 +239,7 @@ Key boundary_key(const std::string& side) {
                      },
                      side + " end of the row of bodies");
   end.exclusive({"velocity", "table"}, true, Condition{"type", {"piston"}});
+  end.exclusive({"pressure", "pressure_table"}, true, Condition{"type", {"traction"}});
   return end;
 }
 

@@ -66,7 +66,7 @@ void Tracker::schedule_wall_gap(int side) {
 void Tracker::schedule_piston(int side) {
   const Wall& w = walls_[side];
   const double t = w.next_change();
-  if (w.present && t <= scene_.t_end) push(t, EventType::piston, side, 0, w.version, 0);
+  if ((w.present || w.traction) && t <= scene_.t_end) push(t, EventType::piston, side, 0, w.version, 0);
 }
 
 void Tracker::schedule_gaps_around(int piece) {
@@ -105,6 +105,14 @@ void Tracker::handle(const Event& e) {
     case EventType::piston: {
       Wall& w = walls_[e.a];
       flush_wall(e.a, t);
+      if (w.traction) {  // the end's pressure changes: its Riemann problem anew
+        ++w.segment;
+        w.pressure = w.pressures[w.segment];
+        ++w.version;
+        schedule_piston(e.a);
+        resolve(w.attached, w.attached, t);
+        break;
+      }
       w.x0 = w.x_at(t);
       w.t0 = t;
       ++w.segment;
@@ -262,7 +270,8 @@ void Tracker::flush_wall(int side, double t) {
   // The wall pushes the body with force p towards the body: +p at the left wall, −p at the right.
   const double force = side == 0 ? p : -p;
   impulse_ += force * dt;
-  wall_work_ += force * w.velocity() * dt;
+  // A wall's work at its own velocity; a traction's at the end's, which it holds.
+  wall_work_ += force * (w.traction ? end.dxdt : w.velocity()) * dt;
   w.pressure_since = t;
 }
 

@@ -704,7 +704,9 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     const Material& m = left_boundary ? *mR : *mL;
     const State& st = left_boundary ? right_region.state : left_region.state;
     const Side side = left_boundary ? Side::right : Side::left;
-    if (e.attach == Attach::boundary) {
+    if (e.attach == Attach::boundary && walls_[e.partner].traction) {
+      sol = solve_traction_end(m, st, side, walls_[e.partner].pressure);
+    } else if (e.attach == Attach::boundary) {
       const Wall& w = walls_[e.partner];
       const double min_p = w.bonded ? m.cavitation_pressure() : std::max(0.0, m.cavitation_pressure());
       sol = solve_wall(m, st, side, w.rapidity, min_p);
@@ -1022,7 +1024,7 @@ void Tracker::set_offsets(int first, int last, bool left_boundary, bool right_bo
     const Node& end = nodes_[left_boundary ? first : last];
     double offset = offset_in[f_in];
     Node& step = nodes_[out.front()];
-    if (end.attach == Attach::boundary) {
+    if (end.attach == Attach::boundary && !walls_[end.partner].traction) {
       const Wall& w = walls_[end.partner];
       offset = -offset;
       if (w.motion.ramps) {

@@ -71,7 +71,13 @@ void Tracker::build_walls() {
   for (int side = 0; side < 2; ++side) {
     const BoundaryDecl& d = *decls[side];
     Wall& w = walls_[side];
-    w.present = d.type != BoundaryType::free;
+    if (d.type == BoundaryType::traction) {
+      w.traction = true;
+      w.motion.times = d.traction_times;
+      w.pressures = d.traction_pressures;
+      w.pressure = w.pressures.front();
+    }
+    w.present = stands(d.type);
     if (!w.present) continue;
     w.bonded = d.bonded;
     w.x0 = d.position;
@@ -119,9 +125,9 @@ RunResult Tracker::run() {
   // Contacts present at t = 0: walls at a body's end, bodies touching each other.
   for (int side = 0; side < 2; ++side) {
     Wall& w = walls_[side];
-    if (!w.present) continue;
+    if (!w.present && !w.traction) continue;
     const int end = side == 0 ? pieces_[order_.front()].left_end : pieces_[order_.back()].right_end;
-    if (touching(nodes_[end].x0, w.x0)) {
+    if (w.traction || touching(nodes_[end].x0, w.x0)) {
       w.attached = end;
       nodes_[end].attach = Attach::boundary;
       nodes_[end].partner = side;

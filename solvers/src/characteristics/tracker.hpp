@@ -229,8 +229,13 @@ struct Piece {
 };
 
 /// A wall or piston. Its lab position is piecewise linear in time.
+/// A wall or a piston (present), or a traction: a pressure applied to the outer end of the row
+/// of bodies, which the end never leaves (its history in motion.times and pressures).
 struct Wall {
   bool present = false;
+  bool traction = false;
+  double pressure = 0.0;  ///< a traction's, in force now
+  std::vector<double> pressures;
   bool bonded = false;
   double t0 = 0.0, x0 = 0.0, rapidity = 0.0;
   std::size_t segment = 0;  ///< index into motion of the velocity in force

@@ -41,7 +41,9 @@ struct BodyDecl {
   [[nodiscard]] double natural_length() const;
 };
 
-enum class BoundaryType { free, wall, piston };
+enum class BoundaryType { free, wall, piston, traction };
+/// A wall or a piston: a boundary with a position, which the bodies may touch and leave.
+[[nodiscard]] constexpr bool stands(BoundaryType t) { return t == BoundaryType::wall || t == BoundaryType::piston; }
 
 /// A piston's velocity history: v = velocity[i] for times[i] <= t < times[i+1]
 /// (piecewise constant; times[0] = 0).
@@ -68,6 +70,9 @@ struct BoundaryDecl {
   bool bonded = false;    ///< wall/piston pulls as well as pushes
   double position = 0.0;  ///< lab x at t = 0 (wall, piston); resolved by the loader
   PistonMotion piston;    ///< for type == piston
+  /// For type == traction: the pressure applied to the end, p = pressures[i] for
+  /// times[i] <= t < times[i+1] (times[0] = 0); natural units.
+  std::vector<double> traction_times, traction_pressures;
   SourceLocation where;
 };
 

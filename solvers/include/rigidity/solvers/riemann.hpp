@@ -106,6 +106,12 @@ struct RiemannSolution {
 /// A state at a free end (p = 0, or the material's cavitation pressure if higher).
 [[nodiscard]] RiemannSolution solve_free_end(const Material& material, const State& state, Side side);
 
+/// A state at an end held at pressure `pressure` (a traction: > 0 pushes on the material, < 0
+/// pulls); an end pulled harder than the material's cavitation pressure holds that pressure
+/// (the material carries no more tension). Never parted.
+[[nodiscard]] RiemannSolution solve_traction_end(const Material& material, const State& state, Side side,
+                                                 double pressure);
+
 /// Speeds of a front or characteristic.
 struct FrontSpeeds {
   double lagrangian = 0.0;  ///< dX/dt
