@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "hdf5_output.hpp"
 #include "rigidity/cli.hpp"
 #include "rigidity/errors.hpp"
 #include "rigidity/output.hpp"
@@ -480,10 +481,13 @@ int run_command(std::span<const std::string> args, std::ostream& out) {
     if (progress) progress->clear();
     files.commit(result);
     wall_probe = recorder.wall_probe();
+    if (scene.outputs.hdf5) write_hdf5(dir, scene.units);
   } catch (const OutputRefused& e) {
     throw CommandError(kExitInvalidInput, std::string(e.what()) + "; nothing was run");
   } catch (const OutputError& e) {
     throw CommandError(kExitInternal, "cannot write the outputs: " + std::string(e.what()));
+  } catch (const std::runtime_error& e) {
+    throw CommandError(kExitInternal, "cannot write run.h5 (the CSV files are written): " + std::string(e.what()));
   }
 
   if (!quiet) {

@@ -272,6 +272,46 @@ def test_an_si_scene_gives_the_numbers_of_the_csv_files(tmp_path):
     np.testing.assert_array_equal(r.events["x"], np.atleast_1d(events["x"]))
 
 
+@pytest.mark.skipif("RIGIDITY_EXECUTABLE" not in os.environ, reason="needs the built rigidity executable")
+@pytest.mark.parametrize("units", ["natural", "si"])
+def test_run_h5_holds_the_numbers_of_the_csv_files_with_their_units(tmp_path, units):
+    import json
+    import subprocess
+
+    h5py = pytest.importorskip("h5py")
+    scene = steel_wall(units)
+    scene["outputs"]["hdf5"] = True
+    path = tmp_path / "steel_wall.yaml"
+    path.write_text(json.dumps(scene))  # JSON is YAML
+    out = tmp_path / "out"
+    subprocess.run([os.environ["RIGIDITY_EXECUTABLE"], "run", str(path), "--out", str(out), "--quiet"], check=True)
+    read = lambda name: np.atleast_1d(np.genfromtxt(out / name, delimiter=",", names=True, dtype=None,
+                                                    encoding="utf-8"))
+    probes, snapshots, fronts, events = (read(n) for n in ("probes.csv", "snapshots.csv", "fronts.csv", "events.csv"))
+    si = units == "si"
+    with h5py.File(out / "run.h5", "r") as f:
+        assert f.attrs["units"] == units
+        assert json.loads(f.attrs["summary"]) == json.loads((out / "summary.json").read_text())
+        for quantity, unit in (("p", "Pa" if si else "rho c^2"), ("v", "m/s" if si else "c"), ("x", "m" if si else "L")):
+            rows = probes[probes["quantity"] == quantity]
+            group = f["probes/wall/" + quantity]
+            np.testing.assert_array_equal(group["t"][:], rows["t"])
+            np.testing.assert_array_equal(group["value"][:], rows["value"])
+            assert group["value"].attrs["unit"] == unit
+            assert group["t"].attrs["unit"] == ("s" if si else "L/c")
+        for quantity in ("p", "x"):
+            rows = snapshots[snapshots["quantity"] == quantity]
+            group = f["snapshots/bar/" + quantity]
+            for column in ("t", "X", "value"):
+                np.testing.assert_array_equal(group[column][:], rows[column])
+        names = f["fronts"].attrs["kind_names"].split(",")
+        for column in ("t0", "x0", "t1", "x1", "family"):
+            np.testing.assert_array_equal(f["fronts/" + column][:], fronts[column])
+        assert [names[k] for k in f["fronts/kind"][:]] == list(fronts["kind"])
+        np.testing.assert_array_equal(f["events/t"][:], events["t"])
+        assert list(f["events/kind"].asstr()[:]) == list(events["kind"])
+
+
 def ringing_scene(t_end, **solver):
     """A bar of 300 Hooke segments ringing between bonded walls: about 10^4 time units a second."""
     segments = [{"length": 0.01, "velocity": 0.2 if k % 2 == 0 else -0.2} for k in range(300)]

@@ -352,6 +352,7 @@ class SceneBuilder {
       scene.outputs.snapshots.push_back(std::move(snapshot));
     }
     scene.outputs.fronts = outputs["fronts"].flag;
+    scene.outputs.hdf5 = outputs["hdf5"].flag;
   }
 
   /// A natural-unit value as the scene writes it.

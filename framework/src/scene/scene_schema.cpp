@@ -331,6 +331,10 @@ Key outputs_key() {
                       Key::list("probes", std::move(probe), "probes.csv"),
                       Key::list("snapshots", std::move(snapshot), "snapshots.csv"),
                       Key::boolean("fronts", "fronts.csv: the x-t diagram of every front").defaults_to(false),
+                      Key::boolean("hdf5",
+                                   "run.h5 (the command line): every output of the run in one HDF5 file beside the CSV "
+                                   "files, with the units of each dataset")
+                          .defaults_to(false),
                   },
                   "what the run writes besides summary.json and resolved_scene.yaml");
 }

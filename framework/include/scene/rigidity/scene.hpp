@@ -123,6 +123,7 @@ struct OutputsDecl {
   std::vector<ProbeDecl> probes;
   std::vector<SnapshotDecl> snapshots;
   bool fronts = false;
+  bool hdf5 = false;  ///< run.h5 beside the CSV files (written by the command line)
 };
 
 struct Scene {
