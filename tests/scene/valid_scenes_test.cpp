@@ -322,6 +322,27 @@ outputs:
   EXPECT_TRUE(scene.outputs.fronts);
 }
 
+TEST(Outputs, SnapshotsEveryFromZeroToTheEndAsDecimals) {
+  const Scene scene = load_ok(std::string(kMinimal) + "outputs: {snapshots: [{every: 0.1, quantities: [p]}]}\n");
+  std::vector<double> expected;
+  for (int k = 0; k <= static_cast<int>(std::lround(scene.t_end / 0.1)); ++k)
+    expected.push_back(std::stod(std::to_string(k) + "e-1"));  // 0.3, not 3 × 0.1
+  EXPECT_EQ(scene.outputs.snapshots.at(0).times, expected);
+  EXPECT_EQ(scene.outputs.snapshots.at(0).times.back(), scene.t_end);
+}
+
+TEST(Boundaries, TractionTakesAPressureOrAHistory) {
+  const Scene constant = load_ok(std::string(kMinimal) + "boundaries: {left: {type: traction, pressure: 0.25}}\n");
+  EXPECT_EQ(constant.left.type, BoundaryType::traction);
+  EXPECT_EQ(constant.left.traction_times, (std::vector<double>{0.0}));
+  EXPECT_EQ(constant.left.traction_pressures, (std::vector<double>{0.25}));
+  const Scene pulse = load_ok(std::string(kMinimal) +
+                              "boundaries: {right: {type: traction, pressure_table: [[0, 0.3], [0.5, -0.05]]}}\n");
+  EXPECT_EQ(pulse.right.traction_times, (std::vector<double>{0.0, 0.5}));
+  EXPECT_EQ(pulse.right.traction_pressures, (std::vector<double>{0.3, -0.05}));
+  EXPECT_EQ(pulse.left.type, BoundaryType::free);
+}
+
 // ---- SI units -------------------------------------------------------------------------------------------------
 
 constexpr const char* kSI = R"(

@@ -10,6 +10,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <cstdio>
+#include <span>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -45,6 +48,8 @@ using detail::TreeValue;
 
 /// Most samples a probe may take over the run (t_end / every).
 constexpr double kMaxProbeSamples = 1.0e7;
+/// Most snapshot times `every` may give (each a full sampling of the bodies).
+constexpr double kMaxSnapshotTimes = 1.0e5;
 
 /// Ends that differ by rounding only (relative 1e-12) touch: a body written to start
 /// where the previous one ends, at x = l·s/γ computed by hand, is in contact with it.
@@ -336,7 +341,26 @@ class SceneBuilder {
 
     for (const Checked& s : outputs["snapshots"].entries) {
       SnapshotDecl snapshot;
-      for (const Checked& t : s["times"].entries) {
+      if (const Checked* every = s.find("every")) {
+        // Times k × every up to time.end (its last within the rounding of the product), each
+        // to 15 significant digits in the scene's unit, so that 3 × 0.1 is written 0.3 as a
+        // person would.
+        const double count = std::floor(scene.t_end / every->number * (1.0 + 1e-12));
+        const auto decimal = [](double t) {
+          char text[32];
+          std::snprintf(text, sizeof text, "%.15g", t);
+          return std::strtod(text, nullptr);
+        };
+        if (count + 1.0 > kMaxSnapshotTimes)
+          checker_.fail(*every, "gives " + format_number(count + 1.0) + " snapshots up to time.end; at most " +
+                                    format_number(kMaxSnapshotTimes) + " (a larger `every`, or `times`)");
+        for (double k = 0.0; k <= count; k += 1.0) {
+          const double written = decimal(k * every->as_written);  // in the scene's unit of time
+          snapshot.times.push_back(std::min(to_natural(written, Dimension::time, scene.units), scene.t_end));
+        }
+      }
+      const Checked* times = s.find("times");
+      for (const Checked& t : times != nullptr ? times->entries : std::span<const Checked>{}) {
         if (t.number > scene.t_end)
           checker_.fail(t, "must be in [0, end = " + format_number(end.as_written) + "] (time.end), got " +
                                format_number(t.as_written));

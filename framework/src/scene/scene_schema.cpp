@@ -316,8 +316,10 @@ Key outputs_key() {
       {
           Key::list("times", Key::number("", "a time in [0, end]").in(Dimension::time).at_least(0.0),
                     "times of the snapshots")
-              .items(1)
-              .require(),
+              .items(1),
+          Key::number("every", "a snapshot every this long from t = 0 to time.end (instead of times)")
+              .in(Dimension::time)
+              .above(0.0),
           Key::list("quantities", quantity, "quantities written").items(1).distinct().require(),
           Key::integer("samples", "points per body, uniform in X, both ends included")
               .at_least(2.0)
@@ -326,6 +328,7 @@ Key outputs_key() {
           Key::list("bodies", Key::text("", "a body").as_identifier(), "bodies written (empty: every body)").distinct(),
       },
       "quantities along the bodies at given times");
+  snapshot.exclusive({"times", "every"}, true);
   return Key::map("outputs",
                   {
                       Key::list("probes", std::move(probe), "probes.csv"),
