@@ -131,6 +131,8 @@ std::string solver_line(const RunResult& result) {
 
 /// Events the terminal summary lists one by one (summary.json has more, events.csv all).
 constexpr std::size_t kEventsShown = 20;
+/// Seconds between two progress lines when stderr is a log, not a terminal.
+constexpr double kLogInterval_s = 30.0;
 
 void print_summary(std::ostream& out, const Scene& scene, const RunResult& result, const std::string& dir) {
   const SceneUnits units(scene.units);
@@ -368,8 +370,34 @@ class ProgressLine {
   ProgressLine(const ProgressLine&) = delete;
   ProgressLine& operator=(const ProgressLine&) = delete;
 
+  /// On a terminal: the line, rewritten in place.
   void show(const RunProgress& progress) {
-    // Rates over the last interval, smoothed: a run's pace changes as fronts multiply.
+    std::string line = describe(progress) + " | Ctrl-C stops";
+    // A line wider than the terminal would wrap, and '\r' would no longer return to its start.
+    if (const std::size_t columns = terminal_columns(); columns > 1 && line.size() > columns - 1)
+      line.resize(columns - 1);
+    const std::size_t width = line.size();
+    if (line.size() < width_) line.append(width_ - line.size(), ' ');  // cover the longer line before
+    width_ = width;
+    std::cerr << '\r' << line << std::flush;
+    shown_ = true;
+  }
+
+  /// Into a log (stderr not a terminal, as on a batch system): one line each time.
+  void log(const RunProgress& progress) {
+    std::cerr << "progress: " << describe(progress) << " (" << duration(progress.elapsed_s) << " so far)" << std::endl;
+  }
+
+  void clear() {
+    if (!shown_) return;
+    std::cerr << '\r' << std::string(width_, ' ') << '\r' << std::flush;
+    shown_ = false;
+  }
+
+ private:
+  /// Where the run is and how fast it goes: rates over the last interval, smoothed (a run's
+  /// pace changes as fronts multiply).
+  std::string describe(const RunProgress& progress) {
     const double dt_wall = progress.elapsed_s - last_.elapsed_s;
     if (dt_wall > 0.0) {
       const double sim_rate = (progress.t - last_.t) / dt_wall;
@@ -386,24 +414,8 @@ class ProgressLine {
     if (progress.fronts_alive >= 0) line += " | " + count(static_cast<double>(progress.fronts_alive)) + " fronts";
     line += " | " + count(interaction_rate_) + " interactions/s";
     line += " | " + (sim_rate_ > 0.0 ? duration((scene_.t_end - progress.t) / sim_rate_) : std::string("?")) + " left";
-    line += " | Ctrl-C stops";
-    // A line wider than the terminal would wrap, and '\r' would no longer return to its start.
-    if (const std::size_t columns = terminal_columns(); columns > 1 && line.size() > columns - 1)
-      line.resize(columns - 1);
-    const std::size_t width = line.size();
-    if (line.size() < width_) line.append(width_ - line.size(), ' ');  // cover the longer line before
-    width_ = width;
-    std::cerr << '\r' << line << std::flush;
-    shown_ = true;
+    return line;
   }
-
-  void clear() {
-    if (!shown_) return;
-    std::cerr << '\r' << std::string(width_, ' ') << '\r' << std::flush;
-    shown_ = false;
-  }
-
- private:
   /// 1234567 as "1.23 M".
   static std::string count(double value) {
     if (value < 1e4) return number(std::round(value), 6);
@@ -469,6 +481,10 @@ int run_command(std::span<const std::string> args, std::ostream& out) {
     if (!quiet && ::isatty(STDERR_FILENO) == 1) {
       progress.emplace(scene);
       recorder.on_progress([&progress](const RunProgress& p) { progress->show(p); });
+    } else if (!quiet) {
+      // A log, as on a batch system: a line every kLogInterval_s once the run has taken that long.
+      progress.emplace(scene);
+      recorder.on_progress([&progress](const RunProgress& p) { progress->log(p); }, kLogInterval_s, kLogInterval_s);
     }
     try {
       result = solve(scene, recorder);
