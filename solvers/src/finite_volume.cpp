@@ -837,9 +837,19 @@ void Scheme::sample(const SampleTime& st) {
   if (st.kind == SampleTime::Kind::probe) {
     const ProbeDecl& probe = scene_.outputs.probes[st.index];
     const int body = probe_body(scene_, probe);
-    double x = 0.0;
-    const int c = locate(body, probe.X, x);
-    for (Quantity q : probe.quantities) recorder_.probe(ProbeSample{t, st.index, q, quantity(q, c, probe.X, x)});
+    double x = 0.0, X = probe.X;
+    if (probe.lab_x) {
+      const double l0 = bodies_[body].length;
+      const auto x_of = [&](double label) {
+        double at = 0.0;
+        static_cast<void>(locate(body, label, at));
+        return at;
+      };
+      if (*probe.lab_x < x_of(0.0) || *probe.lab_x > x_of(l0)) return;  // the body is not there
+      X = label_at_lab(*probe.lab_x, 0.0, l0, x_of);
+    }
+    const int c = locate(body, X, x);
+    for (Quantity q : probe.quantities) recorder_.probe(ProbeSample{t, st.index, q, quantity(q, c, X, x)});
     return;
   }
   const SnapshotDecl& snap = scene_.outputs.snapshots[st.index];

@@ -114,7 +114,7 @@ class StreamingFiles : public ::testing::Test {
     bar.name = "bar";
     s.bodies.push_back(bar);
     s.t_end = 1.0;
-    s.outputs.probes.push_back(ProbeDecl{"mid", "bar", 0.5, {Quantity::p}, 1e-6, {}});
+    s.outputs.probes.push_back(ProbeDecl{"mid", "bar", 0.5, {Quantity::p}, 1e-6, {}, std::nullopt});
     s.resolver = [] { return std::string("name: streamed\n"); };
     return s;
   }

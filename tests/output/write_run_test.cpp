@@ -38,7 +38,8 @@ Scene wall_impact_scene(UnitSystem units = UnitSystem::natural) {
   scene.right.type = BoundaryType::wall;
   scene.right.position = 1.0;
   scene.t_end = 1.5;
-  scene.outputs.probes.push_back(ProbeDecl{"wall", "bar", 1.0, {Quantity::p, Quantity::v, Quantity::s}, 0.5, {}});
+  scene.outputs.probes.push_back(
+      ProbeDecl{"wall", "bar", 1.0, {Quantity::p, Quantity::v, Quantity::s}, 0.5, {}, std::nullopt});
   scene.outputs.snapshots.push_back(SnapshotDecl{{0.5}, {Quantity::x, Quantity::p}, 3, {}, {}});
   scene.outputs.fronts = true;
   scene.resolver = [] { return std::string("name: wall_impact\n# every default filled in: \"verbatim\"\n"); };

@@ -319,8 +319,9 @@ class SceneBuilder {
       require_reference(p["body"], body_names, "body");
       probe.body = p["body"].word;
       const double l0 = scene.bodies[body_index_.at(probe.body)].natural_length();
-      const Checked& at = p["at"];
-      if (at.is_word()) {
+      if (const Checked* lab = p.find("at_x")) {
+        probe.lab_x = lab->number;
+      } else if (const Checked& at = p["at"]; at.is_word()) {
         probe.X = at.word == "left" ? 0.0 : l0;
       } else {
         if (at.number < 0.0 || at.number > l0)

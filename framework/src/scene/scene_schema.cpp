@@ -305,12 +305,16 @@ Key outputs_key() {
                    Key::text("body", "the body probed").as_identifier().require(),
                    Key::number("at", "material label X probed, or `left` / `right` (X = 0 / l0)")
                        .in(Dimension::length)
-                       .or_words({"left", "right"})
-                       .require(),
+                       .or_words({"left", "right"}),
+                   Key::number("at_x",
+                               "lab position x probed instead: the body's state wherever it covers x (no sample "
+                               "while it does not)")
+                       .in(Dimension::length),
                    Key::list("quantities", quantity, "quantities sampled").items(1).distinct().require(),
                    Key::number("every", "sampling interval").in(Dimension::time).above(0.0).require(),
                },
-               "samples quantities at one material point at regular times");
+               "samples quantities at one material point (or lab position) at regular times");
+  probe.exclusive({"at", "at_x"}, true);
   Key snapshot = Key::map(
       "",
       {

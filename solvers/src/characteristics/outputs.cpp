@@ -123,9 +123,26 @@ void Tracker::sample(const SampleTime& st) {
     const ProbeDecl& probe = scene_.outputs.probes[st.index];
     const int body = probe_body(scene_, probe);
     Region r;
-    double x = 0.0;
-    if (!locate(body, probe.X, t, r, x)) return;
-    for (Quantity q : probe.quantities) recorder_.probe(ProbeSample{t, st.index, q, quantity(q, r, probe.X, x)});
+    double x = 0.0, X = probe.X;
+    if (probe.lab_x) {
+      // The piece of the body that covers the lab position, and the label there.
+      bool covered = false;
+      for (int piece : order_) {
+        if (pieces_[piece].body != body) continue;
+        const Node& le = nodes_[pieces_[piece].left_end];
+        const Node& re = nodes_[pieces_[piece].right_end];
+        if (*probe.lab_x < le.x_at(t) || *probe.lab_x > re.x_at(t)) continue;
+        X = label_at_lab(*probe.lab_x, le.X_at(t), re.X_at(t), [&](double label) {
+          double at = 0.0;
+          return locate(body, label, t, r, at) ? at : label;
+        });
+        covered = true;
+        break;
+      }
+      if (!covered) return;
+    }
+    if (!locate(body, X, t, r, x)) return;
+    for (Quantity q : probe.quantities) recorder_.probe(ProbeSample{t, st.index, q, quantity(q, r, X, x)});
     return;
   }
   // A snapshot's labels rise, and so do the pieces of a body in lab order and the nodes of

@@ -109,6 +109,9 @@ struct ProbeDecl {
   std::vector<Quantity> quantities;
   double every = 0.0;  ///< sampling interval; samples at 0, every, 2 every, ... ≤ t_end
   SourceLocation where;
+  /// A probe at a fixed lab position instead of X (at_x): the body's state wherever it covers
+  /// x; no sample while it does not.
+  std::optional<double> lab_x;
 };
 
 struct SnapshotDecl {

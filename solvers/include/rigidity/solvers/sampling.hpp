@@ -3,6 +3,7 @@
 /// an output quantity in a uniform state.
 
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -62,6 +63,17 @@ class SamplingTimer {
   double& total_;
   std::chrono::steady_clock::time_point start_;
 };
+
+/// The label X in [X_lo, X_hi] at lab position x, for a body whose lab position x_of(X) rises
+/// with X there (bisection to round-off; the ends where x lies beyond them).
+template <class XOf>
+[[nodiscard]] double label_at_lab(double x, double X_lo, double X_hi, XOf&& x_of) {
+  for (int i = 0; i < 200 && X_hi - X_lo > 4e-16 * (1.0 + std::abs(X_hi)); ++i) {
+    const double mid = 0.5 * (X_lo + X_hi);
+    (x_of(mid) < x ? X_lo : X_hi) = mid;
+  }
+  return 0.5 * (X_lo + X_hi);
+}
 
 /// Index of the body a probe samples (the loader has checked that it exists).
 [[nodiscard]] int probe_body(const Scene& scene, const ProbeDecl& probe);
