@@ -221,6 +221,23 @@ class SceneBuilder {
     }
   }
 
+  /// A history [[t0, value0], [t1, value1], ...] from t0 = 0, times strictly increasing: its
+  /// times and its values, each through `value_of`, in `times` and `values`.
+  template <class ValueOf>
+  void read_history(const Checked& table, const std::string& whose, std::vector<double>& times,
+                    std::vector<double>& values, ValueOf value_of) const {
+    for (std::size_t i = 0; i < table.entries.size(); ++i) {
+      const Checked& t = table.entries[i].entries[0];
+      if (i == 0 && t.number != 0.0)
+        checker_.fail(t, "the " + whose + "'s history must start at t = 0, got " + written(t.number, Dimension::time));
+      if (i > 0 && !(t.number > times.back()))
+        checker_.fail(t, "times must increase strictly: " + written(t.number, Dimension::time) + " follows " +
+                             written(times.back(), Dimension::time));
+      times.push_back(t.number);
+      values.push_back(value_of(table.entries[i].entries[1].number));
+    }
+  }
+
   void read_boundary(Checked& side, bool left, const Scene& scene, BoundaryDecl& out) const {
     const std::string& type = side["type"].word;
     out.type = type == "wall"       ? BoundaryType::wall
@@ -235,17 +252,8 @@ class SceneBuilder {
         out.traction_pressures = {pressure->number};
         return;
       }
-      const Checked& table = side["pressure_table"];
-      for (std::size_t i = 0; i < table.entries.size(); ++i) {
-        const Checked& t = table.entries[i].entries[0];
-        if (i == 0 && t.number != 0.0)
-          checker_.fail(t, "the pressure's history must start at t = 0, got " + written(t.number, Dimension::time));
-        if (i > 0 && !(t.number > out.traction_times.back()))
-          checker_.fail(t, "times must increase strictly: " + written(t.number, Dimension::time) + " follows " +
-                               written(out.traction_times.back(), Dimension::time));
-        out.traction_times.push_back(t.number);
-        out.traction_pressures.push_back(table.entries[i].entries[1].number);
-      }
+      read_history(side["pressure_table"], "pressure", out.traction_times, out.traction_pressures,
+                   [](double p) { return p; });
       return;
     }
     out.bonded = side["bonded"].flag;
@@ -271,17 +279,8 @@ class SceneBuilder {
       out.piston.rapidities = {std::atanh(velocity->number)};
       return;
     }
-    const Checked& table = side["table"];
-    for (std::size_t i = 0; i < table.entries.size(); ++i) {
-      const Checked& t = table.entries[i].entries[0];
-      if (i == 0 && t.number != 0.0)
-        checker_.fail(t, "the piston's history must start at t = 0, got " + written(t.number, Dimension::time));
-      if (i > 0 && !(t.number > out.piston.times.back()))
-        checker_.fail(t, "times must increase strictly: " + written(t.number, Dimension::time) + " follows " +
-                             written(out.piston.times.back(), Dimension::time));
-      out.piston.times.push_back(t.number);
-      out.piston.rapidities.push_back(std::atanh(table.entries[i].entries[1].number));
-    }
+    read_history(side["table"], "piston", out.piston.times, out.piston.rapidities,
+                 [](double v) { return std::atanh(v); });
     // Both solvers run a linear table as a staircase of steps of the tolerance in rapidity;
     // the front tracker steps it as its smooth waves (see Tracker::build_walls).
     if (side["interpolation"].word == "linear")
