@@ -294,6 +294,54 @@ TEST(Boundaries, ConstantPiston) {
   EXPECT_FALSE(scene.right.bonded);
 }
 
+TEST(Bodies, AProfileIsTheStaircaseOfItsValuesAtTheSegmentsMiddles) {
+  const Scene scene = load_ok(R"yaml(
+name: profile
+materials: {m: {model: hooke, wave_speed: 0.5}}
+bodies:
+  - {name: bar, material: m, length: 2, velocity_profile: "0.2*sin(_pi*X/l0)", stretch_profile: "1 + 0.1*X",
+     profile_segments: 8}
+  - {name: other, material: m, position: 3, length: 1, gamma: 1.25, stretch_profile: "1 - 0.1*X", profile_segments: 2}
+time: {end: 1}
+)yaml");
+  const std::vector<Segment>& segments = scene.bodies.at(0).segments;
+  ASSERT_EQ(segments.size(), 8u);
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const double X = 2.0 * (static_cast<double>(k) + 0.5) / 8.0;
+    EXPECT_DOUBLE_EQ(segments[k].length, 0.25);
+    EXPECT_NEAR(std::tanh(segments[k].rapidity), 0.2 * std::sin(M_PI * X / 2.0), 1e-12) << k;  // muparser's _pi
+    EXPECT_NEAR(segments[k].stretch.value(), 1.0 + 0.1 * X, 1e-15) << k;
+    EXPECT_EQ(segments[k].material, "m");
+  }
+  // What is not a profile stays uniform: gamma 1.25 (v = 0.6) along a stretch profile.
+  const std::vector<Segment>& other = scene.bodies.at(1).segments;
+  ASSERT_EQ(other.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_NEAR(std::tanh(other[k].rapidity), 0.6, 1e-15);
+    EXPECT_NEAR(other[k].stretch.value(), 1.0 - 0.1 * (static_cast<double>(k) + 0.5) / 2.0, 1e-15);
+  }
+  // The scene as run reloads to the same bodies.
+  const Scene again = load_ok(scene.resolved_yaml());
+  ASSERT_EQ(again.bodies.at(0).segments.size(), 8u);
+  EXPECT_EQ(again.bodies.at(0).segments[3].rapidity, segments[3].rapidity);
+}
+
+TEST(Bodies, AProfileOfAnSiSceneIsWrittenInItsUnits) {
+  const Scene scene = load_ok(R"(
+name: profile_si
+units: si
+materials: {steel: {model: hooke, rest_density: 7850, wave_speed: 5100}}
+bodies:
+  - {name: bar, material: steel, length: 2, velocity_profile: "100*X", profile_segments: 2}
+time: {end: 1e-4}
+)");
+  const std::vector<Segment>& segments = scene.bodies.at(0).segments;
+  ASSERT_EQ(segments.size(), 2u);
+  // X in metres (0.5 and 1.5 m at the middles), v in m/s: 50 and 150 m/s, in units of c.
+  EXPECT_NEAR(std::tanh(segments[0].rapidity), 50.0 / 299792458.0, 1e-20);
+  EXPECT_NEAR(std::tanh(segments[1].rapidity), 150.0 / 299792458.0, 1e-20);
+}
+
 // ---- outputs -----------------------------------------------------------------------------------------------
 
 TEST(Outputs, ProbesAndSnapshots) {

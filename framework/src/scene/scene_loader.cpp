@@ -6,6 +6,7 @@
 
 #include "rigidity/scene_loader.hpp"
 
+#include <muParser.h>
 #include <yaml-cpp/exceptions.h>
 
 #include <algorithm>
@@ -48,6 +49,8 @@ using detail::TreeValue;
 
 /// Most samples a probe may take over the run (t_end / every).
 constexpr double kMaxProbeSamples = 1.0e7;
+/// Segments a body's profile is run as unless it says (profile_segments).
+constexpr int kProfileSegments = 100;
 /// Most snapshot times `every` may give (each a full sampling of the bodies).
 constexpr double kMaxSnapshotTimes = 1.0e5;
 
@@ -166,6 +169,67 @@ class SceneBuilder {
     return segment;
   }
 
+  /// A body's initial data as expressions of its label X (velocity_profile, stretch_profile;
+  /// what is not a profile is uniform as written): the staircase of their values at the
+  /// middles of profile_segments equal segments of `length`. Each expression is evaluated in
+  /// the scene's units (X and l0 lengths, v a velocity); an error names the key, and the label
+  /// where a value is not admissible.
+  void read_profile(const Checked& b, const Scene& scene, BodyDecl& body) const {
+    const std::string& material = b["material"].word;
+    const double l0 = b["length"].number;
+    const Checked* segments = b.find("profile_segments");
+    const int count = segments != nullptr ? static_cast<int>(segments->number) : kProfileSegments;
+    const Checked* velocity_text = b.find("velocity_profile");
+    const Checked* stretch_text = b.find("stretch_profile");
+    double X = 0.0;
+    double l0_written = from_natural(l0, Dimension::length, scene.units);
+    mu::Parser velocity, stretch;
+    const std::pair<mu::Parser*, const Checked*> expressions[] = {{&velocity, velocity_text}, {&stretch, stretch_text}};
+    for (const auto& [parser, text] : expressions) {
+      if (text == nullptr) continue;
+      try {
+        parser->DefineVar("X", &X);
+        parser->DefineVar("l0", &l0_written);
+        parser->SetExpr(text->word);
+        static_cast<void>(parser->Eval());  // parses it
+      } catch (const mu::Parser::exception_type& e) {
+        checker_.fail(*text, "the expression \"" + text->word + "\": " + e.GetMsg() +
+                                 " (an expression of X and l0, with muparser's functions and _pi)");
+      }
+    }
+    const Segment uniform = velocity_text != nullptr && stretch_text != nullptr ? Segment{}
+                            : velocity_text != nullptr ? Segment{0.0, 0.0, Stretch::from_value(b["stretch"].number), ""}
+                                                       : Segment{0.0, rapidity_of(b), Stretch::natural(), ""};
+    for (int k = 0; k < count; ++k) {
+      const double middle = l0 * (k + 0.5) / count;
+      X = from_natural(middle, Dimension::length, scene.units);
+      const std::string at = " at X = " + written(middle, Dimension::length);
+      Segment segment{l0 / count, uniform.rapidity, uniform.stretch, material};
+      try {
+        if (velocity_text != nullptr) {
+          const double v = to_natural(velocity.Eval(), Dimension::velocity, scene.units);
+          if (!(std::abs(v) < 1.0))
+            checker_.fail(*velocity_text, "gives v = " + written(v, Dimension::velocity) + at + "; |v| < c");
+          segment.rapidity = std::atanh(v);
+        }
+        if (stretch_text != nullptr) {
+          const double s = stretch.Eval();
+          if (!(s > 0.0) || !std::isfinite(s))
+            checker_.fail(*stretch_text, "gives s = " + format_number(s) + at + "; a stretch is positive");
+          segment.stretch = Stretch::from_value(s);
+        }
+      } catch (const mu::Parser::exception_type& e) {
+        checker_.fail(velocity_text != nullptr ? *velocity_text : *stretch_text,
+                      "cannot be evaluated" + at + ": " + e.GetMsg());
+      }
+      const std::string violation = scene.materials.at(material).material->admissibility_violation(segment.stretch);
+      if (!violation.empty())
+        checker_.fail(stretch_text != nullptr ? *stretch_text : b["stretch"],
+                      "inadmissible initial state" + at + ": " + violation);
+      body.segments.push_back(segment);
+    }
+  }
+
   /// Lab length of a segment at t = 0: l·s/γ.
   static double lab_length(const Segment& segment) {
     return segment.length * segment.stretch.value() / std::cosh(segment.rapidity);
@@ -192,7 +256,11 @@ class SceneBuilder {
             s.put(checker_.derived_text(s, "material", b["material"].word));
           body.segments.push_back(read_segment(s, s["material"].word, scene));
         }
+      } else if (b.has("velocity_profile") || b.has("stretch_profile")) {
+        read_profile(b, scene, body);
       } else {
+        if (const Checked* count = b.find("profile_segments"))
+          checker_.fail(*count, "'profile_segments' needs a profile: velocity_profile or stretch_profile");
         body.segments.push_back(read_segment(b, b["material"].word, scene));
       }
 

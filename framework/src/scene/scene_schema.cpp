@@ -189,9 +189,23 @@ Key body_key() {
       Key::number("length", "natural length l0 (or give `segments`)").in(Dimension::length).above(0.0),
   };
   for (Key& k : uniform_state_keys("length")) keys.push_back(std::move(k));
+  keys.push_back(Key::text("velocity_profile",
+                           "v(X): the initial velocity as an expression of the label X (and l0, the natural length; "
+                           "muparser's functions and _pi), in the scene's units, instead of a uniform velocity")
+                     .only_with("length"));
+  keys.push_back(Key::text("stretch_profile", "s(X): the initial stretch as an expression of X, instead of `stretch`")
+                     .only_with("length"));
+  keys.push_back(Key::integer("profile_segments",
+                              "a profile runs as the staircase of its values at the middles of this many equal "
+                              "segments (100 if not given)")
+                     .at_least(1.0)
+                     .at_most(1.0e5)
+                     .only_with("length"));
   keys.push_back(Key::list("segments", segment_key(), "piecewise-constant initial data, left to right").items(1));
   Key body = Key::map("", std::move(keys), "a bar; bodies are listed left to right and may touch but not overlap");
-  body.exclusive({"length", "segments"}, true).exclusive({"velocity", "rapidity", "gamma"});
+  body.exclusive({"length", "segments"}, true)
+      .exclusive({"velocity", "rapidity", "gamma", "velocity_profile"})
+      .exclusive({"stretch", "stretch_profile"});
   return body;
 }
 
