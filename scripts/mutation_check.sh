@@ -89,7 +89,7 @@ for line in "${lines[@]}"; do
   fi
   labels="^($(IFS='|'; echo "${names[*]}"))\$"
   set +e
-  output=$(ctest --test-dir "$work/build" -L "$labels" -R "$regex" --timeout 120 2>&1)
+  output=$(ctest --test-dir "$work/build" -L "$labels" -R "$regex" -j "$jobs" --timeout 120 2>&1)
   set -e
   run=$(grep -c 'Test *#' <<<"$output" || true)
   failed=$(grep -E '\*\*\*Failed|\*\*\*Timeout|\*\*\*Exception|SEGFAULT' <<<"$output" | sed -E 's/.*Test *#[0-9]+: ([^ ]+) .*/\1/' || true)
