@@ -718,14 +718,9 @@ RiemannSolution solve_wall(const Material& m, const State& state, Side side, dou
 }
 
 RiemannSolution solve_free_end(const Material& m, const State& state, Side side) {
-  const double p_free = std::max(0.0, m.cavitation_pressure());
-  const WaveCurve curve(m, state, side);
-  const Outcome<State> pt = state_at_pressure(curve, p_free);
-  if (!pt.ok()) return failed(pt);
-  RiemannSolution out;
-  out.parted = true;
-  out.pressure = p_free;
-  out.left = out.right = pt.value;
+  // The traction p = 0 (the cavitation pressure where that is higher), and the end is free.
+  RiemannSolution out = solve_traction_end(m, state, side, 0.0);
+  out.parted = out.status == Status::ok;
   return out;
 }
 

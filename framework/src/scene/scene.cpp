@@ -12,16 +12,19 @@ double BodyDecl::natural_length() const {
   return length;
 }
 
+double ramp_rapidity(const std::vector<double>& times, const std::vector<double>& rapidities, double t) {
+  if (times.empty()) return 0.0;
+  if (!(t < times.back())) return rapidities.back();
+  const std::size_t i = static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
+  const std::size_t row = i == 0 ? 0 : i - 1;
+  const double v0 = std::tanh(rapidities[row]), v1 = std::tanh(rapidities[row + 1]);
+  return std::atanh(v0 + (v1 - v0) * (t - times[row]) / (times[row + 1] - times[row]));
+}
+
 PistonMotion linear_piston(const std::vector<double>& times, const std::vector<double>& rapidities, double step) {
   constexpr double kMaxRampSteps = 1000.0;
   // The ramp as written: velocity linear in time between rows, constant after the last.
-  const auto ramp = [&](double t) {
-    if (!(t < times.back())) return rapidities.back();
-    const std::size_t i = static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
-    const std::size_t row = i == 0 ? 0 : i - 1;
-    const double v0 = std::tanh(rapidities[row]), v1 = std::tanh(rapidities[row + 1]);
-    return std::atanh(v0 + (v1 - v0) * (t - times[row]) / (times[row + 1] - times[row]));
-  };
+  const auto ramp = [&](double t) { return ramp_rapidity(times, rapidities, t); };
   // The staircase's values, each the ramp at the middle of its interval, with the first row's
   // and the last row's values at the ends: (anchor time, value).
   std::vector<double> anchors{times.front()}, values{rapidities.front()};

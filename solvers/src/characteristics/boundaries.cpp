@@ -290,7 +290,9 @@ double Tracker::ramp_ahead_error(double t) const {
     constexpr int kPoints = 16;
     double off = 0.0;
     for (int i = 0; i < kPoints; ++i)
-      off += std::abs(ramp_rapidity(w.motion, since + (i + 0.5) / kPoints * (t - since)) - w.rapidity);
+      off += std::abs(
+          ramp_rapidity(w.motion.row_times, w.motion.row_rapidities, since + (i + 0.5) / kPoints * (t - since)) -
+          w.rapidity);
     const double speed = std::abs(speeds_of(r, side == 0 ? +1 : -1).lagrangian);
     error += 2.0 * off / kPoints * speed * (t - since);
   }

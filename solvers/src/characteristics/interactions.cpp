@@ -613,8 +613,8 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   SmoothIn smooth_in;
   double offset_in[2] = {0.0, 0.0};
   int count_in[2] = {0, 0};
-  int families_in[2] = {kNone, kNone};      // the piece each family came in from
-  bool compressive_in[2] = {false, false};  // the last front of each family was compressive
+  int families_in[2] = {kNone, kNone};  // the piece each family came in from
+  int last_in[2] = {kNone, kNone};      // the last front of each family that came in
   for (int id : group) {
     Node& n = nodes_[id];
     const double defect = close_defect(n, t);
@@ -624,8 +624,8 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
       continue;
     }
     const int f = n.family > 0 ? 1 : 0;
-    smooth_in.add(f, n.smooth, families_in[f] == n.piece && compressive_in[f] && n.front_kind == FrontKind::shock);
-    compressive_in[f] = n.front_kind == FrontKind::shock;
+    smooth_in.add(f, n.smooth, families_in[f] == n.piece && converge(nodes_[last_in[f]], n));
+    last_in[f] = id;
     offset_in[f] += n.offset;
     ++count_in[f];
     families_in[f] = n.piece;
@@ -1028,7 +1028,7 @@ void Tracker::set_offsets(int first, int last, bool left_boundary, bool right_bo
       const Wall& w = walls_[end.partner];
       offset = -offset;
       if (w.motion.ramps) {
-        const double ahead = 2.0 * (ramp_rapidity(w.motion, t) - w.rapidity);
+        const double ahead = 2.0 * (ramp_rapidity(w.motion.row_times, w.motion.row_rapidities, t) - w.rapidity);
         offset += ahead;
         // Until the piston's next step, the region it leaves behind the step holds the
         // staircase's value, off by up to `ahead` from the ramp's over what the step sweeps.
@@ -1046,16 +1046,6 @@ void Tracker::set_offsets(int first, int last, bool left_boundary, bool right_bo
     const std::vector<int>& out = f == 0 ? emitted_left_ : emitted_right_;
     if (out.size() == 1 && count_in[f] == 1 && nodes_[out.front()].smooth) nodes_[out.front()].offset = offset_in[f];
   }
-}
-
-double Tracker::ramp_rapidity(const PistonMotion& motion, double t) {
-  const std::vector<double>& times = motion.row_times;
-  const std::vector<double>& rapidities = motion.row_rapidities;
-  if (times.empty()) return 0.0;
-  if (!(t < times.back())) return rapidities.back();
-  const std::size_t i = static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin()) - 1;
-  const double v0 = std::tanh(rapidities[i]), v1 = std::tanh(rapidities[i + 1]);
-  return std::atanh(v0 + (v1 - v0) * (t - times[i]) / (times[i + 1] - times[i]));
 }
 
 }  // namespace rigidity::characteristics

@@ -228,9 +228,9 @@ struct Piece {
   int left_end = kNone, right_end = kNone;
 };
 
-/// A wall or piston. Its lab position is piecewise linear in time.
-/// A wall or a piston (present), or a traction: a pressure applied to the outer end of the row
-/// of bodies, which the end never leaves (its history in motion.times and pressures).
+/// A wall or a piston (present), whose lab position is piecewise linear in time, or a traction:
+/// a pressure applied to the outer end of the row of bodies, which the end never leaves (its
+/// history in motion.times and pressures).
 struct Wall {
   bool present = false;
   bool traction = false;
@@ -338,6 +338,13 @@ struct EventLater {
   bool operator()(const Event& x, const Event& y) const { return x.t != y.t ? x.t > y.t : x.seq > y.seq; }
 };
 
+/// Whether two fronts of one family that meet are steps of a compression wave converging
+/// into a shock: both compressive. Where one is expansive (a rarefaction step, or a weak wave
+/// that an interaction left behind in a compression wave) they cancel, and no shock forms.
+[[nodiscard]] inline bool converge(const Node& a, const Node& b) {
+  return a.front_kind == FrontKind::shock && b.front_kind == FrontKind::shock;
+}
+
 /// Which waves leaving an interaction go on as smooth waves, from the fronts that came in. A
 /// wave of family f is smooth if a smooth step came in, no front of family f that came in was
 /// a true jump (a shock or a jump goes on as itself), no two compressive fronts of family f
@@ -346,13 +353,6 @@ struct EventLater {
 /// only cancels part of it, see converge) and, where the meeting is at an end, an interface
 /// or a contact, no front that came in was a true jump (its reflection and transmission are
 /// jumps too).
-/// Whether two fronts of one family that meet are steps of a compression wave converging
-/// into a shock: both compressive. Where one is expansive (a rarefaction step, or a weak wave
-/// that an interaction left behind in a compression wave) they cancel, and no shock forms.
-[[nodiscard]] inline bool converge(const Node& a, const Node& b) {
-  return a.front_kind == FrontKind::shock && b.front_kind == FrontKind::shock;
-}
-
 struct SmoothIn {
   bool any_smooth = false, any_sharp = false, structure = false;
   bool sharp[2] = {false, false}, met[2] = {false, false};  ///< [0] C−, [1] C+
@@ -494,8 +494,6 @@ class Tracker {
   /// of the fronts that came in (per family: their sum and count).
   void set_offsets(int first, int last, bool left_boundary, bool right_boundary, const double offset_in[2],
                    const int count_in[2], double t);
-  /// The rapidity of a linearly interpolated piston's ramp at time t (its rows as written).
-  static double ramp_rapidity(const PistonMotion& motion, double t);
   /// The L1 error at time t of the region a ramping piston has left behind its last step: its
   /// characteristics carry the ramp's rapidity, the staircase holds the step's until the next.
   [[nodiscard]] double ramp_ahead_error(double t) const;

@@ -57,6 +57,10 @@ struct PistonMotion {
   std::vector<double> row_times, row_rapidities;
 };
 
+/// The rapidity at time t of a table (times, rapidities) whose velocity ramps linearly between
+/// its rows, the last row's after it (0 for an empty table).
+[[nodiscard]] double ramp_rapidity(const std::vector<double>& times, const std::vector<double>& rapidities, double t);
+
 /// A piston whose velocity ramps linearly between the rows of its table (times, rapidities),
 /// as a staircase: each ramp split into steps of at most `step` in rapidity (at most 1000 per
 /// row), each holding the velocity of the ramp at its middle, each step taken when the ramp has
