@@ -497,13 +497,19 @@ int run_command(std::span<const std::string> args, std::ostream& out) {
     if (progress) progress->clear();
     files.commit(result);
     wall_probe = recorder.wall_probe();
-    if (scene.outputs.hdf5) write_hdf5(dir, scene.units);
   } catch (const OutputRefused& e) {
     throw CommandError(kExitInvalidInput, std::string(e.what()) + "; nothing was run");
   } catch (const OutputError& e) {
     throw CommandError(kExitInternal, "cannot write the outputs: " + std::string(e.what()));
-  } catch (const std::runtime_error& e) {
-    throw CommandError(kExitInternal, "cannot write run.h5 (the CSV files are written): " + std::string(e.what()));
+  }
+  // Only the HDF5 file's own failures are reported as such: whatever the solver throws (a
+  // scene without a classical solution, a numerical failure) keeps its own exit status.
+  if (scene.outputs.hdf5) {
+    try {
+      write_hdf5(dir, scene.units);
+    } catch (const std::runtime_error& e) {
+      throw CommandError(kExitInternal, "cannot write run.h5 (the CSV files are written): " + std::string(e.what()));
+    }
   }
 
   if (!quiet) {

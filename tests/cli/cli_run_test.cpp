@@ -230,6 +230,27 @@ TEST_F(CliTest, RunOfAnInadmissibleSceneExitsThree) {
   EXPECT_EQ(summary["status"].string, "inadmissible");
 }
 
+TEST_F(CliTest, PistonsThatMeetBeforeTheEndAreRefusedWithExitThree) {
+  // Pistons closing at 0.25 c each on a bar of length 1 meet at t = 2 in the middle: the scene
+  // has no classical solution to t = 3, which the run says before either solver starts.
+  const std::string scene = write_file("closing.yaml", R"yaml(name: closing
+materials:
+  steel: {model: hooke, wave_speed: 0.5}
+bodies:
+  - {name: bar, material: steel, position: 0.0, length: 1.0}
+boundaries:
+  left: {type: piston, velocity: 0.25}
+  right: {type: piston, velocity: -0.25}
+time: {end: 3.0}
+)yaml");
+  const CliOutcome r = rigidity("run " + scene + " --out run");
+  EXPECT_EQ(r.exit_status, 3) << r.out << r.err;
+  EXPECT_EQ(r.err.rfind("error: no classical solution", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("meet at t = 2 L/c, x = 0.5 L"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("run.h5"), std::string::npos) << r.err;  // not taken for an output's failure
+  EXPECT_FALSE(fs::exists(dir() / "run"));
+}
+
 // ---- a run that meets no classical solution mid-way (exit 3) ------------------------------
 
 const std::string kCrushedScene = std::string(RIGIDITY_SOURCE_DIR) + "/tests/scenes/crushed_hooke.yaml";
