@@ -97,6 +97,28 @@ RunResult Tracker::run() {
   result_.solver = "characteristics";
   result_.solver_numbers = {{"tolerance", scene_.solver.tolerance}};
   for (const BodyDecl& b : scene_.bodies) result_.body_names.push_back(b.name);
+  set_thresholds();
+  totals(0.0, result_.conservation.energy_initial, result_.conservation.momentum_initial);
+  schedule_start();
+  event_loop();
+  const double t_end = recorder_.stopped() ? recorder_.t_reached() : scene_.t_end;
+  while (!samples_.done() && !recorder_.stopped()) sample(samples_.pop());
+
+  close_books(t_end);
+  const BoundParts parts = error_bound_parts(t_end);
+  report_error_bound(parts);
+  report_conservation(t_end);
+  report_bodies(t_end);
+  if (fan_capped_ && scene_.solver.tolerance_given) {  // the default asks for no more than the cap gives
+    result_.warnings.push_back("rarefaction fans were split into at most " + std::to_string(kMaxFanSteps) +
+                               " steps: coarser than solver.tolerance = " + number(scene_.solver.tolerance));
+  }
+  result_.stats.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - result_.stats.sampling_time_s;
+  return result_;
+}
+
+void Tracker::set_thresholds() {
   // The threshold of weak waves: each interface or contact holding back a wave weaker than
   // `weak_` adds at most weak_ × (the speeds of the waves on its two sides, ~1) per unit time
   // to the L1 error; over the time light takes to cross the bodies' natural length, for every
@@ -120,8 +142,9 @@ RunResult Tracker::run() {
   places_ = std::max(1, places);
   set_resolution(tolerance);
   piece_cap_ = std::max(kMinPiecesPerBody, kPiecesPerBody / tolerance);
-  totals(0.0, result_.conservation.energy_initial, result_.conservation.momentum_initial);
+}
 
+void Tracker::schedule_start() {
   // Contacts present at t = 0: walls at a body's end, bodies touching each other.
   for (int side = 0; side < 2; ++side) {
     Wall& w = walls_[side];
@@ -147,7 +170,9 @@ RunResult Tracker::run() {
     for (int n = pieces_[piece].left_end; n != kNone; n = nodes_[n].next)
       push(0.0, EventType::resolve, n, n, nodes_[n].version, 0);
   for (std::size_t i = 0; i < pieces_.size(); ++i) schedule_gaps_around(static_cast<int>(i));
+}
 
+void Tracker::event_loop() {
   // The cost model. Each pass of the loop takes the earliest event: a meeting of two
   // neighbouring nodes (the heap holds one current entry per node, and stale ones at most a
   // few times as many), a gap closing, a piston changing speed, or a sample. An interaction
@@ -205,9 +230,9 @@ RunResult Tracker::run() {
     }
     if (validating()) validate(t_event);
   }
-  const double t_end = recorder_.stopped() ? recorder_.t_reached() : scene_.t_end;
-  while (!samples_.done() && !recorder_.stopped()) sample(samples_.pop());
+}
 
+void Tracker::close_books(double t_end) {
   // Close the books at t_end.
   for (int side = 0; side < 2; ++side) flush_wall(side, t_end);
   for (std::size_t id = 0; id < nodes_.size(); ++id) {
@@ -225,12 +250,16 @@ RunResult Tracker::run() {
     record_light_segments(static_cast<int>(piece), t_end);
     result_.stats.crossings_unvisited += lattice_crossings_done(static_cast<int>(piece), t_end);
   }
+  // Waves held back at interfaces and contacts, fronts off their curves: booked up to t_end.
+  for (Node& n : nodes_)
+    if (n.alive) close_defect(n, t_end);
+}
+
+Tracker::BoundParts Tracker::error_bound_parts(double t_end) const {
   double error_fans_alive = 0.0, carried_alive = 0.0;
   for (std::size_t id = 0; id < nodes_.size(); ++id) {
-    Node& n = nodes_[id];
-    if (!n.alive) continue;
-    close_defect(n, t_end);
-    if (n.kind != NodeKind::front) continue;
+    const Node& n = nodes_[id];
+    if (!n.alive || n.kind != NodeKind::front) continue;
     carried_alive += n.carried;
     // A step still on its line stands for its centred fan, which the samples take exactly.
     if (n.front_kind == FrontKind::rarefaction && n.fan == kNone) {
@@ -260,6 +289,11 @@ RunResult Tracker::run() {
   const double carried = carried_alive + error_lost_;
   const double booked = (error_defects_ - error_defects_released_) + error_fans_alive + carried + error_droplets_;
   const double error_bound = kStability * booked / total_length_;
+  return BoundParts{error_bound, carried, error_fans_alive};
+}
+
+void Tracker::report_error_bound(const BoundParts& bound) {
+  const double error_bound = bound.error_bound, carried = bound.carried, error_fans_alive = bound.error_fans_alive;
   result_.solver_numbers.emplace_back("error_bound", error_bound);
   result_.solver_numbers.emplace_back("weak_wave_threshold", weak_);
   result_.solver_numbers.emplace_back("waves_held_back", static_cast<double>(suppressed_));
@@ -317,9 +351,10 @@ RunResult Tracker::run() {
       !fan_capped_) {  // (or the fan cap says why)
     const double parts[4] = {error_merges_, error_fans_ + error_fans_alive, error_defects_, error_droplets_};
     const int largest = static_cast<int>(std::max_element(parts, parts + 4) - parts);
-    static constexpr const char* kWhy[4] = {
-        "merges that held the live fronts to their cap (max(100, 0.25/tolerance) per body): the waves scatter into "
-        "more fronts than the cap lets the run follow",
+    const std::string why[4] = {
+        "merges that held the live fronts to their cap (max(" + number(kMinFrontsPerBody) + ", " +
+            number(kFrontsPerBody) +
+            "/tolerance) per body): the waves scatter into more fronts than the cap lets the run follow",
         "the steps of smooth waves (fans and piston ramps, reconstructed between them where they "
         "cross only each other, staircases where shocks and rigid bodies meet them; the widest step is "
         "fan_step_max)",
@@ -342,9 +377,12 @@ RunResult Tracker::run() {
       result_.warnings.push_back("the error bound " + above_tolerance(error_bound) +
                                  " is above solver.tolerance = " + number(scene_.solver.tolerance) + ": most of it (" +
                                  two_digits(kStability * parts[largest] / total_length_) + ") booked by " +
-                                 kWhy[largest] + grown + "; " + kLower[largest] + ", a shorter time.end in proportion");
+                                 why[largest] + grown + "; " + kLower[largest] + ", a shorter time.end in proportion");
     }
   }
+}
+
+void Tracker::report_conservation(double t_end) {
   Conservation& c = result_.conservation;
   totals(t_end, c.energy_final, c.momentum_final);
   c.wall_impulse = impulse_;
@@ -354,7 +392,9 @@ RunResult Tracker::run() {
   c.momentum_droplets = droplet_momentum_;
   c.energy_waves = waves_energy_;
   c.momentum_waves = waves_momentum_;
+}
 
+void Tracker::report_bodies(double t_end) {
   // Bodies at t_end, pieces named name.1, name.2, ... left to right.
   for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
     std::vector<int> parts;
@@ -383,13 +423,6 @@ RunResult Tracker::run() {
       result_.bodies.push_back(r);
     }
   }
-  if (fan_capped_ && scene_.solver.tolerance_given) {  // the default asks for no more than the cap gives
-    result_.warnings.push_back("rarefaction fans were split into at most " + std::to_string(kMaxFanSteps) +
-                               " steps: coarser than solver.tolerance = " + number(scene_.solver.tolerance));
-  }
-  result_.stats.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - result_.stats.sampling_time_s;
-  return result_;
 }
 
 }  // namespace rigidity::characteristics

@@ -390,6 +390,29 @@ class Tracker {
   // ---- set-up -------------------------------------------------------------------
   void build_bodies();
   void build_walls();
+  // ---- the run's phases (tracker.cpp) ------------------------------------------------
+  /// The thresholds the tolerance sets (weak waves, merges, fan steps, the front and piece caps).
+  void set_thresholds();
+  /// Contacts present at t = 0 (walls, touching bodies), and the events that resolve every
+  /// initial discontinuity and end.
+  void schedule_start();
+  /// Takes the earliest event until time.end, a budget or an inadmissible state stops the run.
+  void event_loop();
+  /// Closes every front's, wall's and light piece's books and fronts.csv segments at t_end.
+  void close_books(double t_end);
+  /// The error bound and the parts of it the warnings name.
+  struct BoundParts {
+    double error_bound = 0.0;       ///< per unit natural length, with kStability
+    double carried = 0.0;           ///< what the fronts carry at t_end and what ended without a successor
+    double error_fans_alive = 0.0;  ///< what the smooth steps and jumps alive at t_end book
+  };
+  [[nodiscard]] BoundParts error_bound_parts(double t_end) const;
+  /// The solver numbers of the bound, and the warnings where it is above the tolerance.
+  void report_error_bound(const BoundParts& bound);
+  /// Energy and momentum at t_end and what the books say made their changes.
+  void report_conservation(double t_end);
+  /// Each body's pieces at t_end: extent, energy, momentum, mean velocity.
+  void report_bodies(double t_end);
 
   // ---- node list ------------------------------------------------------------------
   int new_node(NodeKind kind, int piece) {
