@@ -163,9 +163,11 @@ TEST(ErrorBound, SmoothWavesStaySecondOrderAfterAShockFormedInThem) {
     const double error = distance(coarse, fine);
     EXPECT_LE(error, solver_number(coarse.result, "error_bound") + fine_bound);
     // Sampled as staircases where the weak waves ride, the bar is off by 1.6e-3 at 1e-4 and
-    // the error falls 2.8 times per decade; reconstructed, 3e-4 and 5 times.
+    // the error falls 2.8 times per decade; reconstructed, 1.5e-4 and 10 times. Where a weak
+    // wave riding on a compression step makes it a true jump as it passes (a shock formed of
+    // one step and a weak wave), the line stops at it: 3e-4 at 1e-4.
     if (tolerance == 1e-4) {
-      EXPECT_LT(error, 5.0 * tolerance);
+      EXPECT_LT(error, 2.2 * tolerance);
       EXPECT_GT(previous / error, 4.0);
     }
     previous = error;

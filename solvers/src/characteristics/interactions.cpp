@@ -182,7 +182,7 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   double carried[2] = {0.0, 0.0};
   SmoothIn smooth_in;
   smooth_in.add(na.family > 0 ? 1 : 0, na.smooth, false);
-  smooth_in.add(nb.family > 0 ? 1 : 0, nb.smooth, na.family == nb.family && converge(na, nb));
+  smooth_in.add(nb.family > 0 ? 1 : 0, nb.smooth, na.family == nb.family && converge(na, nb, kSuperposed * fan_step_));
   for (Node* n : {&na, &nb}) {
     const int k = n->family > 0 ? 1 : 0;
     carried[k] += n->carried;
@@ -624,7 +624,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
       continue;
     }
     const int f = n.family > 0 ? 1 : 0;
-    smooth_in.add(f, n.smooth, families_in[f] == n.piece && converge(nodes_[last_in[f]], n));
+    smooth_in.add(f, n.smooth, families_in[f] == n.piece && converge(nodes_[last_in[f]], n, kSuperposed * fan_step_));
     last_in[f] = id;
     offset_in[f] += n.offset;
     ++count_in[f];

@@ -339,10 +339,14 @@ struct EventLater {
 };
 
 /// Whether two fronts of one family that meet are steps of a compression wave converging
-/// into a shock: both compressive. Where one is expansive (a rarefaction step, or a weak wave
-/// that an interaction left behind in a compression wave) they cancel, and no shock forms.
-[[nodiscard]] inline bool converge(const Node& a, const Node& b) {
-  return a.front_kind == FrontKind::shock && b.front_kind == FrontKind::shock;
+/// into a shock: both compressive, and neither a smooth step weaker than `superposed` (a weak
+/// wave riding on the compression wave, as what a forming shock reflects does, which passes
+/// its steps where their speeds differ by its own small jump: the two go on as one step of
+/// the wave). Where one is expansive (a rarefaction step, or a weak wave that an interaction
+/// left behind in a compression wave) they cancel, and no shock forms.
+[[nodiscard]] inline bool converge(const Node& a, const Node& b, double superposed) {
+  const auto riding = [superposed](const Node& n) { return n.smooth && n.strength < superposed; };
+  return a.front_kind == FrontKind::shock && b.front_kind == FrontKind::shock && !riding(a) && !riding(b);
 }
 
 /// Which waves leaving an interaction go on as smooth waves, from the fronts that came in. A
