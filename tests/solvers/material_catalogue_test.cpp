@@ -128,6 +128,25 @@ TEST(MaterialCatalogue, TheRigidLawRunsThePapersWallImpactToItsPublishedNumbers)
   }
 }
 
+TEST(MaterialCatalogue, TheRigidLawIsKarloviniSamuelssonsStiffUltrarigidLawInASlab) {
+  // Karlovini & Samuelsson (gr-qc/0401115): rho = A (n1^2 n2^2 + n2^2 n3^2 + n3^2 n1^2) + B of the
+  // principal linear densities, principal pressure p1 = n1 d(rho)/d(n1) - rho. A slab compressed
+  // along x: n1 = 1/s, n2 = n3 = 1. Unstressed at s = 1 (p1 = A - B = 0) with rho = 3 A + B = 1
+  // there: A = B = 1/4.
+  const double A = 0.25, B = 0.25;
+  const auto rho = [&](double n1) { return A * (2.0 * n1 * n1 + 1.0) + B; };
+  const auto p1 = [&](double n1) { return n1 * (4.0 * A * n1) - rho(n1); };
+  const Scene scene = load(catalogue_text("rigid.yaml"));
+  const Material& rigid = *scene.materials.at("rigid").material;
+  for (const double s : {0.05, 0.3, 0.7, 1.0, 1.8, 6.0}) {
+    const Stretch at = Stretch::from_value(s);
+    EXPECT_NEAR(rigid.energy_density(at), rho(1.0 / s), 1e-12 * rho(1.0 / s)) << s;
+    EXPECT_NEAR(rigid.pressure(at), p1(1.0 / s), 1e-12 * rho(1.0 / s)) << s;
+    // Its longitudinal waves run at c (the paper's abstract): c_s^2 = dp/de along the slab.
+    EXPECT_NEAR(rigid.sound_speed(at), 1.0, 1e-11) << s;
+  }
+}
+
 // ---- Brotas's Hooke law ----------------------------------------------------------------------
 
 TEST(MaterialCatalogue, BrotasHookeGivesTheClosedFormImpact) {
