@@ -12,20 +12,6 @@ namespace rigidity::cli {
 
 namespace {
 
-std::string_view dimension_name(Dimension d) {
-  switch (d) {
-    case Dimension::dimensionless: return "dimensionless";
-    case Dimension::length: return "length";
-    case Dimension::time: return "time";
-    case Dimension::velocity: return "velocity";
-    case Dimension::density: return "density";
-    case Dimension::pressure: return "pressure";
-    case Dimension::energy_per_area: return "energy_per_area";
-    case Dimension::momentum_per_area: return "momentum_per_area";
-  }
-  return "?";
-}
-
 std::string_view type_name(ParameterType t) {
   return t == ParameterType::number ? "number" : t == ParameterType::text ? "text" : "map of numbers";
 }

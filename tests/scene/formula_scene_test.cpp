@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "rigidity/errors.hpp"
@@ -40,6 +41,14 @@ InputError load_error(const std::string& text) {
 }
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+/// `text` with `from` (which must occur) replaced by `to`.
+std::string replaced_once(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
 
 TEST(FormulaScene, AcceptsAPressureOrAStrainEnergyAndDerivesTheRest) {
   const Scene p = load_scene_string(
@@ -167,6 +176,103 @@ c:
   })y"))
                            .message(),
                        "gives no finite number"));
+}
+
+/// The root of f in [a, b], where f changes sign, by bisection.
+double root(const std::function<double(double)>& f, double a, double b) {
+  const bool negative_at_a = f(a) < 0.0;
+  for (int k = 0; k < 200; ++k) {
+    const double m = 0.5 * (a + b);
+    ((f(m) < 0.0) == negative_at_a ? a : b) = m;
+  }
+  return 0.5 * (a + b);
+}
+
+TEST(FormulaScene, AnInflectionIsRefusedNamingTheStretchWhereTheConvexityChangesSign) {
+  // p = A x + B ((x - x0)^3 + x0^3), x = 1 - s: W = 1 + A x^2/2 + B ((x - x0)^4/4 - x0^4/4 + x0^3 x),
+  // W'' = A + 3 B (x - x0)^2, W''' = -6 B (x - x0). The stiffness is least at s = 1 - x0, so the
+  // genuine nonlinearity g = c_s (s W'''/(2 W'') + 3 c_s^2/2) (c_s^2 = s^2 W''/(W + s p)) changes
+  // sign near there: compressions are shocks below, fans above.
+  const double A = 0.01, B = 0.05, x0 = 0.2;
+  const auto g_over_cs = [&](double s) {
+    const double x = 1.0 - s, y = x - x0;
+    const double W = 1.0 + A * x * x / 2.0 + B * (y * y * y * y / 4.0 - x0 * x0 * x0 * x0 / 4.0 + x0 * x0 * x0 * x);
+    const double p = A * x + B * (y * y * y + x0 * x0 * x0), W2 = A + 3.0 * B * y * y, W3 = -6.0 * B * y;
+    return s * W3 / (2.0 * W2) + 1.5 * s * s * W2 / (W + s * p);
+  };
+  const double inflection = root(g_over_cs, 0.7, 0.9);
+  EXPECT_NEAR(inflection, 0.799203, 1e-6);  // solved the same way with Python: 0.79920253
+  const std::string law =
+      R"y(pressure: "A*(1 - s) + B*((1 - s - x0)^3 + x0^3)", parameters: {A: 0.01, B: 0.05, x0: 0.2})y";
+  const InputError e = load_error(scene("{model: formula, " + law + ", min_stretch: 0.5, max_stretch: 1.5}"));
+  EXPECT_EQ(e.key(), "materials.m.pressure");
+  EXPECT_EQ(e.where().line, 4);
+  EXPECT_TRUE(contains(e.message(), ": not convex: the genuine nonlinearity")) << e.what();
+  EXPECT_TRUE(contains(e.message(), "where compressions are shocks and expansions fans")) << e.what();
+  EXPECT_TRUE(contains(e.message(), "where expansions are shocks and compressions fans")) << e.what();
+  const std::size_t at = e.message().find("at s = ");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_NEAR(std::stod(e.message().substr(at + 7)), inflection, 1e-6) << e.what();
+  // On one side of it the law loads.
+  EXPECT_NO_THROW((void)load_scene_string(scene("{model: formula, " + law + ", min_stretch: 0.85, max_stretch: 1.5}"),
+                                          "formula.yaml"));
+}
+
+TEST(FormulaScene, LinearlyDegenerateAndReversedLawsPassTheConvexityCheck) {
+  // Brotas's Hooke law as a strain energy (g = 0: the tables' noise in c_s must not read as a
+  // change of sign), and the linear law p = V^2 (1 - s), whose g > 0 everywhere (convexity_test.cpp).
+  EXPECT_NO_THROW((void)load_scene_string(
+      scene(R"y({model: formula, strain_energy: "s*(sqrt(b^2 + (1 - b^2)/s^2) - b^2)/(1 - b^2)", parameters: {b: 0.5},
+                min_stretch: 0.05, max_stretch: 10})y"),
+      "formula.yaml"));
+  EXPECT_NO_THROW((void)load_scene_string(
+      scene(R"y({model: formula, pressure: "0.09*(1 - s)", min_stretch: 0.5, max_stretch: 2})y"), "formula.yaml"));
+}
+
+TEST(FormulaScene, ADeclaredParameterHasAUnitAndARangeInTheScenesUnits) {
+  // An SI scene: K in Pa, the expression in Pa.
+  const std::string si =
+      "name: formula\nunits: si\nmaterials:\n"
+      "  m: {model: formula, pressure: \"K*(1/s - 1)\", rest_density: 1000,\n"
+      "      parameters: {K: {value: 2.0e9, unit: pressure, min: 0, max: 1.0e12, doc: stiffness}}}\n"
+      "bodies:\n  - {name: bar, material: m, position: 0.0, length: 1.0, velocity: 10.0}\n"
+      "boundaries: {left: {type: free}, right: {type: wall}}\ntime: {end: 1.0e-4}\n";
+  const Scene loaded = load_scene_string(si, "formula.yaml");
+  const Material& m = *loaded.materials.at("m").material;
+  const double c = 299792458.0;
+  EXPECT_NEAR(m.pressure(Stretch::from_value(0.5)) * c * c, 2.0e9, 1e-12 * 2.0e9);
+  EXPECT_NEAR(m.sound_speed(Stretch::natural()) * c, std::sqrt(2.0e9 / 1000.0), 1e-6);  // sqrt(K/rho00)
+  const std::string resolved = loaded.resolved_yaml();
+  EXPECT_TRUE(contains(resolved, "unit: pressure")) << resolved;
+  // The resolved scene loads again, to the same law.
+  const Scene again = load_scene_string(resolved, "resolved.yaml");
+  EXPECT_EQ(again.materials.at("m").material->pressure(Stretch::from_value(0.5)), m.pressure(Stretch::from_value(0.5)));
+
+  // Out of range: the error names the value, the bound and the unit, at the value's key and line.
+  const InputError low = load_error(replaced_once(si, "value: 2.0e9", "value: -2.0e9"));
+  EXPECT_EQ(low.key(), "materials.m.parameters.K.value");
+  EXPECT_EQ(low.where().line, 5);
+  EXPECT_TRUE(contains(low.message(), "parameter 'K' = -2e9 Pa is below its declared min = 0 Pa")) << low.what();
+  const InputError high = load_error(replaced_once(si, "value: 2.0e9", "value: 2.0e13"));
+  EXPECT_EQ(high.key(), "materials.m.parameters.K.value");
+  EXPECT_TRUE(contains(high.message(), "is above its declared max = 1e12 Pa")) << high.what();
+  const InputError crossed = load_error(replaced_once(si, "max: 1.0e12", "max: -1"));
+  EXPECT_EQ(crossed.key(), "materials.m.parameters.K.max");
+  EXPECT_TRUE(contains(crossed.message(), "is below min = 0 Pa")) << crossed.what();
+  // A unit that is not a dimension, a misspelt key, a missing value.
+  const InputError unit = load_error(replaced_once(si, "unit: pressure", "unit: presure"));
+  EXPECT_EQ(unit.key(), "materials.m.parameters.K.unit");
+  EXPECT_TRUE(contains(unit.message(), "did you mean 'pressure'?")) << unit.what();
+  const InputError misspelt = load_error(replaced_once(si, "min: 0", "mim: 0"));
+  EXPECT_EQ(misspelt.key(), "materials.m.parameters.K.mim");
+  EXPECT_TRUE(contains(misspelt.message(), "did you mean 'min'?")) << misspelt.what();
+  const InputError missing = load_error(replaced_once(si, "value: 2.0e9, ", ""));
+  EXPECT_EQ(missing.key(), "materials.m.parameters.K.value");
+  EXPECT_TRUE(contains(missing.message(), "missing required key 'value'")) << missing.what();
+  // The plain form and the declared one mix; a dimensionless declaration needs no unit.
+  EXPECT_NO_THROW((void)load_scene_string(
+      scene(R"y({model: formula, pressure: "k*n*(1/s - 1)", parameters: {k: 0.1, n: {value: 2, min: 1}}})y"),
+      "formula.yaml"));
 }
 
 }  // namespace

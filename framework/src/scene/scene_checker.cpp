@@ -167,6 +167,11 @@ Checked Checker::check(const TreeValue& node, const Key& key, std::shared_ptr<co
     case Kind::map: return check_map(node, key, std::move(out));
     case Kind::dictionary: return check_dictionary(node, key, std::move(out));
     case Kind::number:
+      if (key.number_or_map && node.is_map()) {  // a declared formula parameter: {value, unit, ...}
+        out.kind = Kind::map;
+        return check_map(node, Key::map(key.name, key.fields, key.doc), std::move(out));
+      }
+      return check_number(node, key, std::move(out));
     case Kind::integer: return check_number(node, key, std::move(out));
     case Kind::text:
     case Kind::choice:
@@ -478,6 +483,9 @@ void emit(YAML::Emitter& out, const Checked& c, int depth, bool may_flow = true)
   const bool entries_may_flow = is_keyed(c) || std::all_of(c.entries.begin(), c.entries.end(), narrow);
   out << (is_keyed(c) ? YAML::BeginMap : YAML::BeginSeq);
   for (const Checked& e : c.entries) {
+    // A text whose default is empty (a formula's unused `pressure` or `strain_energy`) is
+    // left out: written as "" it would not load again.
+    if (!e.given && e.kind == Kind::text && e.word.empty()) continue;
     if (is_keyed(c)) out << YAML::Key << e.name << YAML::Value;
     emit(out, e, depth + 1, entries_may_flow);
   }

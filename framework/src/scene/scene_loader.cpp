@@ -116,8 +116,9 @@ class SceneBuilder {
         if (value == nullptr) continue;             // optional and without default: the material decides
         if (spec.type == ParameterType::numbers) {  // a formula's parameters, "KEY.NAME"
           for (const Checked& named : value->entries) {
-            values.set(spec.name + "." + named.name, named.number);
-            text += (text.empty() ? "" : ";") + spec.name + "." + named.name + "=" + shortest(named.number);
+            const double number = declared_parameter(named);
+            values.set(spec.name + "." + named.name, number);
+            text += (text.empty() ? "" : ";") + spec.name + "." + named.name + "=" + shortest(number);
           }
           continue;
         }
@@ -149,6 +150,32 @@ class SceneBuilder {
       scene.materials.emplace(entry.name, MaterialDecl{entry.name, model, std::move(material), where(entry), text});
       material_names_.insert(entry.name);
     }
+  }
+
+  /// The value of a formula's parameter, `k: 2.0` or `k: {value: 2.0e9, unit: pressure, min: 0}`, as
+  /// written (the expression is evaluated in the scene's units); a declared one is first compared
+  /// with its range in natural units, an error naming its value, its bounds and their unit.
+  [[nodiscard]] double declared_parameter(const Checked& named) const {
+    if (named.kind != schema::Kind::map) return named.number;
+    const Checked& value = named["value"];
+    const Dimension dimension = dimension_named(named["unit"].word);
+    const auto natural = [&](const Checked& c) { return to_natural(c.as_written, dimension, units_); };
+    const auto with_unit = [&](const Checked& c) {
+      const std::string_view symbol = unit_symbol(dimension, units_);
+      return format_number(c.as_written) + (dimension == Dimension::dimensionless ? "" : " " + std::string(symbol));
+    };
+    const Checked* min = named.find("min");
+    const Checked* max = named.find("max");
+    if (min != nullptr && max != nullptr && !(natural(*min) <= natural(*max)))
+      checker_.fail(*max,
+                    "parameter '" + named.name + "': max = " + with_unit(*max) + " is below min = " + with_unit(*min));
+    if (min != nullptr && !(natural(value) >= natural(*min)))
+      checker_.fail(value, "parameter '" + named.name + "' = " + with_unit(value) +
+                               " is below its declared min = " + with_unit(*min));
+    if (max != nullptr && !(natural(value) <= natural(*max)))
+      checker_.fail(value, "parameter '" + named.name + "' = " + with_unit(value) +
+                               " is above its declared max = " + with_unit(*max));
+    return value.as_written;
   }
 
   /// φ of a uniform state given by velocity, rapidity or gamma (+ direction).

@@ -58,8 +58,23 @@ Key Key::dictionary(std::string name, Key entry, std::string doc) {
 }
 
 Key Key::parameter(const ParameterSpec& spec) {
-  if (spec.type == ParameterType::numbers)  // a formula's parameters: names the scene chooses, each a number
-    return Key::dictionary(spec.name, Key::number("", "the value of the parameter of this name"), spec.doc);
+  if (spec.type == ParameterType::numbers) {  // a formula's parameters: names the scene chooses, each a number
+    std::vector<std::string> units;
+    for (const Dimension d : {Dimension::dimensionless, Dimension::length, Dimension::time, Dimension::velocity,
+                              Dimension::density, Dimension::pressure})
+      units.emplace_back(dimension_name(d));
+    Key declared =
+        Key::number("", "the value of the parameter of this name, or its declaration {value, unit, min, max, doc}")
+            .or_map_of({Key::number("value", "the value, in the scene's unit of `unit`").require(),
+                        Key::choice("unit", units,
+                                    "the dimension of the value: in the scene's units (Pa, m/s, kg/m^3, m, s in an "
+                                    "SI scene; rho c^2, c, rho, L, L/c in a natural one)")
+                            .defaults_to(std::string("dimensionless")),
+                        Key::number("min", "the smallest admissible value (inclusive), in the same unit"),
+                        Key::number("max", "the largest admissible value (inclusive), in the same unit"),
+                        Key::text("doc", "what the parameter is")});
+    return Key::dictionary(spec.name, std::move(declared), spec.doc);
+  }
   Key k = make(spec.name, spec.type == ParameterType::number ? Kind::number : Kind::text, spec.doc);
   k.dimension = spec.dimension;
   k.required = spec.required;
@@ -100,6 +115,12 @@ Key& Key::exclusive(std::vector<std::string> keys, bool is_required, std::option
 // clang-format on
 Key& Key::extended_by(std::string selector, std::function<std::vector<Key>(const std::string&)> more) {
   extension = Extension{std::move(selector), std::move(more)};
+  return *this;
+}
+
+Key& Key::or_map_of(std::vector<Key> keys) {
+  number_or_map = true;
+  fields = std::move(keys);
   return *this;
 }
 
@@ -398,6 +419,7 @@ std::string kind_text(const Key& k) {
     case Kind::number: {
       std::string out = "number";
       for (const std::string& w : k.words) out += "|" + w;
+      if (k.number_or_map) out += "|map";
       return out;
     }
     case Kind::integer: return "integer";

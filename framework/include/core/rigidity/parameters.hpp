@@ -40,7 +40,9 @@ struct ParameterSpec {
   ///       .with_dimension(Dimension::velocity).require().above(0.0).at_most(1.0)
   static ParameterSpec number(std::string name, std::string doc);
   static ParameterSpec text(std::string name, std::string doc);
-  /// A map of names to numbers, optional, empty by default; no dimension or range (the material checks).
+  /// A map of names to numbers, optional, empty by default; no dimension or range of its own: each
+  /// entry is a number or its declaration {value, unit, min, max, doc}, whose range the scene
+  /// loader checks, and the material checks the rest.
   static ParameterSpec numbers(std::string name, std::string doc);
   ParameterSpec& with_dimension(Dimension d);
   ParameterSpec& require();

@@ -47,6 +47,29 @@ enum class Dimension {
   return u == UnitSystem::si ? value * si_factor(d) : value;
 }
 
+/// The name of a dimension as scenes and `rigidity materials` write it: "pressure".
+[[nodiscard]] constexpr std::string_view dimension_name(Dimension d) {
+  switch (d) {
+    case Dimension::dimensionless: return "dimensionless";
+    case Dimension::length: return "length";
+    case Dimension::time: return "time";
+    case Dimension::velocity: return "velocity";
+    case Dimension::density: return "density";
+    case Dimension::pressure: return "pressure";
+    case Dimension::energy_per_area: return "energy_per_area";
+    case Dimension::momentum_per_area: return "momentum_per_area";
+  }
+  return "?";
+}
+
+/// The dimension named `name` (dimension_name's inverse); dimensionless for an unknown name.
+[[nodiscard]] constexpr Dimension dimension_named(std::string_view name) {
+  for (const Dimension d : {Dimension::length, Dimension::time, Dimension::velocity, Dimension::density,
+                            Dimension::pressure, Dimension::energy_per_area, Dimension::momentum_per_area})
+    if (dimension_name(d) == name) return d;
+  return Dimension::dimensionless;
+}
+
 /// Unit symbol for documentation and headers, e.g. "m/s" or "c".
 [[nodiscard]] constexpr std::string_view unit_symbol(Dimension d, UnitSystem u) {
   if (u == UnitSystem::si) {

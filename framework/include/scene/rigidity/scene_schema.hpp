@@ -86,8 +86,9 @@ struct Key {
   std::size_t max_items = kMaxListItems;
   bool unique = false;  ///< list of words: no entry twice
   std::optional<Condition> only_if;
-  std::vector<Key> fields;             ///< map: its keys; list, dictionary: [entry]; tuple: the positions
-  std::vector<OneOf> one_of;           ///< map
+  bool number_or_map = false;  ///< number: a map of `fields` is accepted instead (a declared formula parameter)
+  std::vector<Key> fields;     ///< map (and number_or_map): its keys; list, dictionary: [entry]; tuple: the positions
+  std::vector<OneOf> one_of;   ///< map
   std::optional<Extension> extension;  ///< map
 
   // ---- declarations, read as sentences ------------------------------------------
@@ -123,6 +124,8 @@ struct Key {
   Key& only_when(std::string sibling, std::vector<std::string> values);
   Key& exclusive(std::vector<std::string> keys, bool required = false, std::optional<Condition> when = {});
   Key& extended_by(std::string selector, std::function<std::vector<Key>(const std::string&)> fields);
+  /// A number key that also takes a map of `keys` in its place: `k: 2.0` or `k: {value: 2.0, ...}`.
+  Key& or_map_of(std::vector<Key> keys);
 
   /// The declared key `name` of a map, or nullptr.
   [[nodiscard]] const Key* field(const std::string& key_name) const;
