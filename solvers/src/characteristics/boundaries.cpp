@@ -199,8 +199,8 @@ void Tracker::absorb_droplet(int piece, int side, int before, double X, double x
   const double psi_kept = memo_->psi(m, kept.stretch);
   const double energy_kept = energy_density(m, kept), momentum_kept = momentum_density(m, kept);
   auto book = [&](const Region& r, double length) {
-    error_droplets_ += std::abs(length) * (std::abs(r.state.rapidity - kept.rapidity) +
-                                           std::abs(memo_->psi(*r.material, r.state.stretch) - psi_kept));
+    ledger_.book_droplet(std::abs(length) * (std::abs(r.state.rapidity - kept.rapidity) +
+                                             std::abs(memo_->psi(*r.material, r.state.stretch) - psi_kept)));
     droplet_energy_ += length * (energy_kept - energy_density(*r.material, r.state));
     droplet_momentum_ += length * (momentum_kept - momentum_density(*r.material, r.state));
   };
@@ -221,7 +221,7 @@ void Tracker::absorb_droplet(int piece, int side, int before, double X, double x
   rebalance();
   for (int n : inside) {
     account_front_end(n, t);
-    // Its fan error goes with the error it carries, to error_lost_ as it is killed.
+    // Its fan error goes with the error it carries, lost with it as it is killed.
     if (nodes_[n].front_kind == FrontKind::rarefaction) nodes_[n].carried += book_fan_error(n, t);
   }
   for (int n : inside) kill_node(n, t);

@@ -108,13 +108,12 @@ int Tracker::merge_neighbours(int id, double t) {
     const int gone = kept == p ? q : p;
     nodes_[kept].smooth = nodes_[p].smooth && nodes_[q].smooth;
     // The merged front carries both fronts' errors, what their fan steps booked, and the merge's.
-    double carried = nodes_[p].carried + nodes_[q].carried + best_cost;
+    double carried = nodes_[p].carried + nodes_[q].carried + ledger_.book_merge(best_cost);
     for (int n : {p, q}) {
       account_front_end(n, t);
       if (nodes_[n].front_kind == FrontKind::rarefaction) carried += book_fan_error(n, t);
       nodes_[n].carried = 0.0;
     }
-    error_merges_ += best_cost;
     ++merged_;
     record_segment(nodes_[kept], t);
     close_defect(nodes_[kept], t);
@@ -229,12 +228,11 @@ bool Tracker::merge_across(int p, int q, double t) {
   if (cost > merge_) return false;
 
   // Apply: p and q leave; one front of family f enters at X̄.
-  error_merges_ += cost;
   ++merged_;
   const int start = left_of_p;
   double X_cursor = segments_.front().a;
   double x_cursor = extend_left ? nodes_[left_of_p].x_at(t) : nodes_[p].x_at(t);
-  const double carried = nodes_[p].carried + nodes_[q].carried + cost;
+  const double carried = nodes_[p].carried + nodes_[q].carried + ledger_.book_merge(cost);
   nodes_[p].carried = nodes_[q].carried = 0.0;
   const bool smooth = nodes_[p].smooth && nodes_[q].smooth;
   kill_node(p, t);

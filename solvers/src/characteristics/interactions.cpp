@@ -209,14 +209,15 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   record_segment(na, t);
   record_segment(nb, t);
   if (held_back) {
-    error_defects_ += strength_minus * std::min(piece_length(na.piece),
-                                                std::abs(speeds_of(before.right, -1).lagrangian) * (scene_.t_end - t));
+    ledger_.book_defect(
+        strength_minus *
+        std::min(piece_length(na.piece), std::abs(speeds_of(before.right, -1).lagrangian) * (scene_.t_end - t)));
     ++suppressed_;
     const int keep_before = na.prev;
     account_front_end(a, t);  // its shock books close while its neighbours are still its own
     link(keep_before, b);
     kill_node(a, t);
-    error_lost_ += carried[0];  // the C− wave held back (its strength is booked above)
+    ledger_.lose(carried[0]);  // the C− wave held back (its strength is booked above)
     nodes_[b].carried = carried[1];
     nodes_[b].smooth = smooth_in.out(1);
     nodes_[b].kink = 0.0;
@@ -672,7 +673,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     try {
       require_solved(sol, limiting, t, x, scene_.units);
     } catch (const InadmissibleError&) {
-      error_lost_ += carried_in + steps_error[0] + steps_error[1] + steps_taken[0] + steps_taken[1];
+      ledger_.lose(carried_in + ledger_.book_fan(steps_error[0] + steps_error[1] + steps_taken[0] + steps_taken[1]));
       if (after != kNone && !nodes_[after].alive) {
         int holder = kNone;
         for (auto id = group.rbegin(); id != group.rend() && holder == kNone; ++id)
@@ -809,8 +810,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
       nodes_[out.front()].born = steps_born[f];
       leave_fan(nodes_[out.front()]);
     } else {
-      error_fans_ += steps_error[f];
-      carried_in += steps_error[f];
+      carried_in += ledger_.book_fan(steps_error[f]);
     }
   }
   share_carried(carried_in, sweep_in, fronts_in, fastest_in, released);
@@ -962,10 +962,9 @@ void Tracker::share_carried(double carried_in, double sweep_in, int fronts_in, d
       if (nodes_[id].strength > 0.0) slowest_out = std::min(slowest_out, std::abs(nodes_[id].dXdt));
     }
   if (!(sweep_out > 0.0) || !std::isfinite(sweep_out)) {
-    error_lost_ += carried_in;  // a held-back wave's error stays in error_defects_
+    ledger_.lose(carried_in);  // a held-back wave's error stays with the defects
     return;
   }
-  error_defects_released_ += released;
   double ratio = sweep_in > 0.0 ? sweep_out / sweep_in : 1.0;
   // Several waves in: their outgoing waves may partly cancel where the exact ones, each
   // arriving at its own moment, do not. Each wave's own scattering keeps at least its
@@ -973,8 +972,7 @@ void Tracker::share_carried(double carried_in, double sweep_in, int fronts_in, d
   // its error moves on at least in the ratio of the label speeds; only that may shrink it.
   if (fronts_in > 1 && fastest_in > 0.0) ratio = std::max(ratio, std::min(1.0, slowest_out / fastest_in));
   ratio = std::min(ratio, kMaxScattering);
-  if (ratio > 1.0) error_scattered_ += carried_in * (ratio - 1.0);
-  const double per_sweep = (carried_in * ratio + released) / sweep_out;
+  const double per_sweep = (ledger_.scale(carried_in, ratio) + ledger_.release(released)) / sweep_out;
   for (const std::vector<int>* out : {&emitted_left_, &emitted_right_})
     for (int id : *out) nodes_[id].carried += per_sweep * nodes_[id].strength * std::abs(nodes_[id].dXdt);
 }
@@ -1034,8 +1032,7 @@ void Tracker::set_offsets(int first, int last, bool left_boundary, bool right_bo
         // staircase's value, off by up to `ahead` from the ramp's over what the step sweeps.
         const double until = std::min(w.next_change(), scene_.t_end) - t;
         const double error = 0.5 * std::abs(ahead) * std::abs(step.dXdt) * std::max(0.0, until);
-        error_fans_ += error;
-        step.carried += error;
+        step.carried += ledger_.book_fan(error);
       }
     }
     if (step.smooth) step.offset = offset;

@@ -343,9 +343,8 @@ bool Tracker::merge_light(int piece, int family, double t) {
             (std::abs(j_near_new - parts[i].j_old) * swept + std::abs(j_near_old - parts[i].j_old) * (length - swept));
   }
   if (cost > merge_light_) return false;
-  error_merges_ += cost;
   ++merged_;
-  older.carried += newer.carried + cost;
+  older.carried += newer.carried + ledger_.book_merge(cost);
   older.smooth = older.smooth && newer.smooth;
   if (want_fronts_ && t > older.t0) {
     recorder_.front(FrontSegment{older.t0, older.x0, t, x_old, FrontKind::contact, family});
@@ -389,8 +388,7 @@ void Tracker::enter_light(std::deque<LightFront>& queue, const Node& f, double t
       error = std::min(error, std::abs(slope - slope_before) * mean * mean / 12.0);
     }
   }
-  error_fans_ += error;
-  entered.carried += error;
+  entered.carried += ledger_.book_fan(error);
 }
 
 }  // namespace rigidity::characteristics

@@ -286,8 +286,8 @@ Tracker::BoundParts Tracker::error_bound_parts(double t_end) const {
   // bound allows a factor kStability for what the linear picture misses (crossings of
   // genuinely nonlinear waves change each other's strengths), measured on the test suite's
   // scenes, not proven.
-  const double carried = carried_alive + error_lost_;
-  const double booked = (error_defects_ - error_defects_released_) + error_fans_alive + carried + error_droplets_;
+  const double carried = ledger_.on_waves(carried_alive);
+  const double booked = ledger_.booked(carried, error_fans_alive);
   const double error_bound = kStability * booked / total_length_;
   return BoundParts{error_bound, carried, error_fans_alive};
 }
@@ -298,12 +298,12 @@ void Tracker::report_error_bound(const BoundParts& bound) {
   result_.solver_numbers.emplace_back("weak_wave_threshold", weak_);
   result_.solver_numbers.emplace_back("waves_held_back", static_cast<double>(suppressed_));
   result_.solver_numbers.emplace_back("fronts_merged", static_cast<double>(merged_));
-  result_.solver_numbers.emplace_back("error_defects", error_defects_ / total_length_);
-  result_.solver_numbers.emplace_back("error_fans", (error_fans_ + error_fans_alive) / total_length_);
-  result_.solver_numbers.emplace_back("error_merges", error_merges_ / total_length_);
+  result_.solver_numbers.emplace_back("error_defects", ledger_.defects() / total_length_);
+  result_.solver_numbers.emplace_back("error_fans", (ledger_.fans() + error_fans_alive) / total_length_);
+  result_.solver_numbers.emplace_back("error_merges", ledger_.merges() / total_length_);
   result_.solver_numbers.emplace_back("error_carried", carried / total_length_);
   result_.solver_numbers.emplace_back("droplets", static_cast<double>(droplets_));
-  result_.solver_numbers.emplace_back("error_droplets", error_droplets_ / total_length_);
+  result_.solver_numbers.emplace_back("error_droplets", ledger_.droplets() / total_length_);
   result_.solver_numbers.emplace_back("fronts_alive_max", static_cast<double>(live_fronts_max_));
   result_.solver_numbers.emplace_back("wave_resolution", coarsest_resolution_);
   result_.solver_numbers.emplace_back("fan_step_max", widest_fan_step_);
@@ -341,7 +341,7 @@ void Tracker::report_error_bound(const BoundParts& bound) {
   const bool spray_coarsened = coarsest_resolution_ > scene_.solver.tolerance;
   if (spray_coarsened) {
     result_.warnings.push_back(
-        "the droplets of a spray booked " + two_digits(kStability * error_droplets_ / total_length_) +
+        "the droplets of a spray booked " + two_digits(kStability * ledger_.droplets() / total_length_) +
         " of the error bound, which no tolerance reduces: while they dominated, waves and "
         "droplets were resolved more coarsely than solver.tolerance = " +
         number(scene_.solver.tolerance) + ", at most to " + above_tolerance(coarsest_resolution_));
@@ -349,7 +349,8 @@ void Tracker::report_error_bound(const BoundParts& bound) {
   // A bound above the tolerance asked for: say which part holds it up and what would lower it.
   if (scene_.solver.tolerance_given && error_bound > scene_.solver.tolerance &&
       !fan_capped_) {  // (or the fan cap says why)
-    const double parts[4] = {error_merges_, error_fans_ + error_fans_alive, error_defects_, error_droplets_};
+    const double parts[4] = {ledger_.merges(), ledger_.fans() + error_fans_alive, ledger_.defects(),
+                             ledger_.droplets()};
     const int largest = static_cast<int>(std::max_element(parts, parts + 4) - parts);
     const std::string why[4] = {
         "merges that held the live fronts to their cap (max(" + number(kMinFrontsPerBody) + ", " +
@@ -368,7 +369,7 @@ void Tracker::report_error_bound(const BoundParts& bound) {
     if (!(largest == 3 && spray_coarsened)) {  // a spray has said so above
       // What merges and fan steps made, once the waves that carry it have split at
       // interfaces, contacts and ends, may have grown: say so where it has.
-      const double made = error_merges_ + error_fans_ + error_fans_alive;
+      const double made = ledger_.merges() + ledger_.fans() + error_fans_alive;
       const std::string grown = largest <= 1 && carried + error_fans_alive > 1.5 * made
                                     ? " (what merges and fan steps booked grew to " +
                                           two_digits(kStability * (carried + error_fans_alive) / total_length_) +

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "front_math.hpp"
+#include "ledger.hpp"
 #include "meeting_queue.hpp"
 #include "memo.hpp"
 #include "rigidity/errors.hpp"
@@ -441,7 +442,7 @@ class Tracker {
     Node& n = nodes_[id];
     if (n.kind == NodeKind::front) {
       --live_fronts_;
-      error_lost_ += n.carried;  // a caller that hands the error on has taken it already
+      ledger_.lose(n.carried);  // a caller that hands the error on has taken it already
       n.carried = 0.0;
       leave_fan(n);
     }
@@ -733,11 +734,8 @@ class Tracker {
   double star_mismatch_ = 0.0;          ///< kStarMismatch × tolerance²
   double dissipation_precision_ = 0.0;  ///< kDissipationPrecision × tolerance
   double total_length_ = 1.0;           ///< natural length of all bodies: the error bound is per unit of it
-  double error_defects_ = 0.0;          ///< L1 error of waves held back at interfaces and contacts
-  double error_fans_ = 0.0;             ///< L1 error of fan steps whose fans are gone
-  /// Errors fronts carried when they ended without a wave to hand them to (a wave that
-  /// vanished, a droplet's fronts); they stay in the bound as they were.
-  double error_lost_ = 0.0;
+  /// Every error booked, by kind, and what the waves carry of it.
+  ErrorLedger ledger_;
   long suppressed_ = 0;      ///< weak waves held back
   double merge_base_ = 0.0;  ///< largest L1 error (strength × distance) of a merge while fronts are few
   double merge_ = 0.0;       ///< the same now: raised while the live fronts exceed front_cap_
@@ -766,7 +764,7 @@ class Tracker {
   /// resolution of waves and droplets coarsens by kResolutionStep (no coarser than
   /// kCoarsestResolution); once they have booked more, it refines by as much (no finer than
   /// the tolerance). The waves' share of the bound then follows the droplets'. What the
-  /// splits of waves have grown the carried errors by (error_scattered_: most of it at the
+  /// splits of waves have grown the carried errors by (ErrorLedger::scattered: most of it at the
   /// cracks a spray's waves set off, each displacing waves far stronger than itself) counts
   /// with the droplets, as error already committed that a finer resolution of the waves to
   /// come does not take back. It grows with what the waves made too, so where the spray's
@@ -777,7 +775,7 @@ class Tracker {
   /// and × 0.91, the slowest spray (seed 745) 0.91 -> 0.19 s with its bound 1.4 -> 2.1
   /// (errors carried through its cracks 1.3 of it).
   void rebalance() {
-    double r = error_merges_ + error_fans_ < kDropletBalance * (error_droplets_ + error_scattered_)
+    double r = ledger_.merges() + ledger_.fans() < kDropletBalance * (ledger_.droplets() + ledger_.scattered())
                    ? std::min(kCoarsestResolution, kResolutionStep * resolution_)
                    : resolution_ / kResolutionStep;
     r = std::max(r, scene_.solver.tolerance);
@@ -805,13 +803,8 @@ class Tracker {
   static constexpr double kLightCap = 10.0;
   double merge_light_ = 0.0;
   long light_fronts_ = 0;
-  double light_bodies_ = 0.0;     ///< bodies whose one piece is light
-  double widest_fan_step_ = 0.0;  ///< reported as fan_step_max
-  double error_merges_ = 0.0;     ///< L1 error of fronts merged
-  /// What share_carried has grown the carried errors by, where a split's outgoing waves
-  /// sweep faster than its incoming ones (see rebalance).
-  double error_scattered_ = 0.0;
-  double error_droplets_ = 0.0;                           ///< L1 error of droplets kept with their piece
+  double light_bodies_ = 0.0;                             ///< bodies whose one piece is light
+  double widest_fan_step_ = 0.0;                          ///< reported as fan_step_max
   double droplet_energy_ = 0.0, droplet_momentum_ = 0.0;  ///< what keeping them changed
   /// Per body: its pieces, and the droplet length as a multiple of tolerance × its length.
   /// A spray that keeps more pieces than kPiecesPerBody / tolerance alive (each collision of
@@ -839,7 +832,7 @@ class Tracker {
     if (n.defect_rate <= 0.0) return 0.0;
     if (n.kind != NodeKind::front) book_held_back(n, t);
     const double booked = std::min(n.defect_rate * (t - n.defect_since), n.defect_cap);
-    error_defects_ += booked;
+    ledger_.book_defect(booked);
     n.defect_rate = 0.0;
     return booked;
   }
@@ -860,8 +853,6 @@ class Tracker {
     waves_momentum_ += dp * dt;
     waves_energy_ += dp * 0.5 * (std::tanh(left.state.rapidity) + std::tanh(right->state.rapidity)) * dt;
   }
-  /// The part of error_defects_ that waves released late took on (share_carried).
-  double error_defects_released_ = 0.0;
   /// The L1 error of a smooth step at time t. As a staircase: the exact fan spreads a fan
   /// step's jump σ over |Δλ| (t − born) in X, a compression wave's step stands for the ramp
   /// to its neighbours (no more than the room between them either way), which a jump in its
@@ -882,12 +873,11 @@ class Tracker {
   /// mean of its sides' characteristic speeds, times its age). kInf where its wave is not
   /// reconstructed next to it (a lone step, a step between plateaus).
   double reconstruction_error(int id, double t) const;
-  /// Books fan step `id`'s error up to t in error_fans_ and returns it, for the wave that
+  /// Books fan step `id`'s error up to t in the ledger and returns it, for the wave that
   /// carries it on (every error in the bound travels with a wave or stays where booked).
   double book_fan_error(int id, double t, bool smooth_on = true) {
     const double booked = fan_error(id, t, smooth_on);
-    error_fans_ += booked;
-    return booked;
+    return ledger_.book_fan(booked);
   }
   double piece_length(int piece) const {
     return nodes_[pieces_[piece].right_end].X0 - nodes_[pieces_[piece].left_end].X0;  // ends move with the material

@@ -1,6 +1,7 @@
 // The tracker's invariants, checked after every interaction while check_tracker_invariants is on.
 #include <atomic>
 #include <cmath>
+#include <deque>
 #include <string>
 
 #include "rigidity/errors.hpp"
@@ -77,8 +78,17 @@ void Tracker::validate(double t) const {
   }
   if (fronts != live_fronts_)
     fail(std::to_string(fronts) + " fronts on the lists and queues, " + std::to_string(live_fronts_) + " counted live");
-  for (const double book : {error_defects_, error_fans_, error_lost_, error_merges_, error_droplets_, error_scattered_})
-    if (!non_negative(book)) fail("an error book reads " + number(book));
+  if (!ledger_.sound()) fail("an error book of the ledger is negative or not finite");
+  // What the waves carry is what the ledger handed them: no error is dropped or made twice
+  // where a front ends, merges, splits or enters a light piece.
+  double carried = 0.0;
+  for (const Node& node : nodes_)
+    if (node.alive && node.kind == NodeKind::front) carried += node.carried;
+  for (const LightPiece& lp : light_)
+    for (const std::deque<LightFront>* queue : {&lp.plus, &lp.minus})
+      for (const LightFront& f : *queue) carried += f.carried;
+  if (std::abs(carried - ledger_.carried()) > 1e-9 * ledger_.flow())
+    fail("the waves carry " + number(carried) + " of error, the ledger says " + number(ledger_.carried()));
 }
 
 }  // namespace characteristics
