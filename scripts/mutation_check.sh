@@ -11,6 +11,11 @@
 #
 #   scripts/mutation_check.sh [MUTATIONS_FILE]       JOBS=2 by default
 #   MUTATIONS_CHECK_ONLY=1 scripts/mutation_check.sh   only that every search text applies
+#   MUTATIONS_BUILD=build-tests scripts/mutation_check.sh
+#       mutates the tree in place and rebuilds in that (configured and built) build directory
+#       instead of a copy: CI, whose clean clone scripts/test.sh has just built, saves the copy's
+#       build. Every file is restored as it was, on any exit. The mutated code builds with the
+#       directory's flags (warnings as errors in CI): a mutation must not make a warning.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 list=${1:-$root/scripts/mutations.txt}
@@ -18,9 +23,18 @@ jobs=${JOBS:-2}
 start=$SECONDS
 
 work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-(cd "$root" && git ls-files -z --cached --others --exclude-standard | tar --null -T - -cf - 2>/dev/null) |
-  (mkdir -p "$work/src" && tar -xf - -C "$work/src")
+if [ -n "${MUTATIONS_BUILD:-}" ]; then
+  src=$root
+  build=$(cd "$root" && cd "$MUTATIONS_BUILD" && pwd)
+  # The file being mutated is kept as FILE.orig until it is restored: put back on any exit.
+  trap '[ -n "${mutating:-}" ] && [ -f "$mutating.orig" ] && mv "$mutating.orig" "$mutating"; rm -rf "$work"' EXIT
+else
+  src=$work/src
+  build=$work/build
+  trap 'rm -rf "$work"' EXIT
+  (cd "$root" && git ls-files -z --cached --others --exclude-standard | tar --null -T - -cf - 2>/dev/null) |
+    (mkdir -p "$src" && tar -xf - -C "$src")
+fi
 
 # name|file|search|replacement|suites: regex, one mutation per line.
 mapfile -t lines < <(grep -v '^[[:space:]]*\(#\|$\)' "$list")
@@ -43,7 +57,7 @@ occurs_once() {
 stale=0
 for line in "${lines[@]}"; do
   file=$(field "$line" 2)
-  if [ ! -f "$work/src/$file" ] || ! occurs_once "$line" "$work/src/$file"; then
+  if [ ! -f "$src/$file" ] || ! occurs_once "$line" "$src/$file"; then
     echo "mutation $(field "$line" 1): the search text must occur exactly once in $file:" >&2
     echo "  $(field "$line" 3)" >&2
     stale=1
@@ -53,9 +67,11 @@ done
 [ "${MUTATIONS_CHECK_ONLY:-}" = 1 ] && { echo "mutation check: ${#lines[@]} search texts apply"; exit 0; }
 
 echo "mutation check: ${#lines[@]} mutations; building ${suites[*]}"
-cmake -S "$work/src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DRIGIDITY_BUILD_BENCHMARKS=OFF \
-  -DRIGIDITY_WERROR=OFF >/dev/null
-cmake --build "$work/build" -j "$jobs" --target "${suites[@]}" >/dev/null
+if [ -z "${MUTATIONS_BUILD:-}" ]; then
+  cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release -DRIGIDITY_BUILD_BENCHMARKS=OFF \
+    -DRIGIDITY_WERROR=OFF >/dev/null
+fi
+cmake --build "$build" -j "$jobs" --target "${suites[@]}" >/dev/null
 echo "mutation check: built in $((SECONDS - start)) s"
 
 missed=0
@@ -66,12 +82,13 @@ for line in "${lines[@]}"; do
   target=$(field "$line" 5)
   read -r -a names <<<"${target%%:*}"
   regex=$(sed 's/^ *//' <<<"${target#*:}")
-  path="$work/src/$file"
+  path="$src/$file"
   if [ ! -f "$path" ]; then
     echo "mutation $name: no file $file" >&2
     exit 2
   fi
   cp -p "$path" "$path.orig"
+  mutating=$path
   # Replace the search text, which must occur exactly once (perl: no quoting of the text).
   if ! SEARCH=$(field "$line" 3) REPLACE=$(field "$line" 4) perl -0777 -i -pe '
       my ($s, $r) = ($ENV{SEARCH}, $ENV{REPLACE});
@@ -82,14 +99,19 @@ for line in "${lines[@]}"; do
     echo "  $(field "$line" 3)" >&2
     exit 2
   fi
-  if ! build_log=$(cmake --build "$work/build" -j "$jobs" --target "${names[@]}" 2>&1); then
+  if ! build_log=$(cmake --build "$build" -j "$jobs" --target "${names[@]}" 2>&1); then
     echo "$build_log" | tail -n 20 >&2
     echo "mutation $name: does not build" >&2
     exit 2
   fi
+  if grep -q 'warning:' <<<"$build_log"; then
+    grep 'warning:' <<<"$build_log" | head -n 5 >&2
+    echo "mutation $name: builds with a warning (CI builds the mutations with warnings as errors)" >&2
+    exit 2
+  fi
   labels="^($(IFS='|'; echo "${names[*]}"))\$"
   set +e
-  output=$(ctest --test-dir "$work/build" -L "$labels" -R "$regex" -j "$jobs" --timeout 120 2>&1)
+  output=$(ctest --test-dir "$build" -L "$labels" -R "$regex" -j "$jobs" --timeout 120 2>&1)
   set -e
   run=$(grep -c 'Test *#' <<<"$output" || true)
   failed=$(grep -E '\*\*\*Failed|\*\*\*Timeout|\*\*\*Exception|SEGFAULT' <<<"$output" | sed -E 's/.*Test *#[0-9]+: ([^ ]+) .*/\1/' || true)
@@ -105,6 +127,7 @@ for line in "${lines[@]}"; do
     missed=$((missed + 1))
   fi
   mv "$path.orig" "$path"
+  mutating=
   touch "$path"
 done
 
