@@ -315,12 +315,19 @@ struct Wave {
     for (const Piece& p : pieces) {
       if (f * xi < f * outer_edge_speed(p)) return p.from;
       if (p.kind == PieceKind::fan && f * xi < f * star_edge_speed(p)) {
-        const double s = std::exp(find_root(
-            [&](double t) {
-              return characteristic_speed(*law, fan_state(*law, p.from, std::exp(t), family), family) - xi;
+        // The fan's own edge stretches at the ends of the bracket; ξ within round-off of an
+        // edge, outside it, gets that edge's state.
+        const double t_from = std::log(p.from.stretch), t_to = std::log(p.to.stretch);
+        const auto stretch_at = [&](double t) {
+          return t == t_from ? p.from.stretch : t == t_to ? p.to.stretch : std::exp(t);
+        };
+        const double t = find_root(
+            [&](double u) {
+              return characteristic_speed(*law, fan_state(*law, p.from, stretch_at(u), family), family) - xi;
             },
-            std::log(p.from.stretch), std::log(p.to.stretch)));
-        return fan_state(*law, p.from, s, family);
+            t_from, t_to);
+        if (std::isnan(t)) return p.to;
+        return fan_state(*law, p.from, stretch_at(t), family);
       }
     }
     return star;
