@@ -223,8 +223,9 @@ NewtonianWave newtonian_wave(const Landau& m, double outer, double star, int fam
 
 TEST(NonconvexReference, NewtonianLimitReproducesLandausLawInClosedForm) {
   // c0 = 0.1 c, strains ~1e-3, velocities ~1e-4 c: relativistic corrections are of relative
-  // order ε (measured: 2e-4 in the sonic strain, 3e-6 in ε*, 1e-6 in v*). The tolerances, 3e-7 in
-  // strain and 1e-8 c in velocity, are a twentieth to a hundredth of a 1 % error of these states.
+  // order ε: measured, 2.5e-9 in ε* and 7e-11 c in v* at most, 6.6e-8 in the sonic strain (2e-4 of
+  // it). The tolerances, 3e-7 in strain and 1e-8 c in velocity, are a quarter or less of a 1 % error
+  // of each of these states.
   const Landau m{0.01, -60.0, 1e5, 1.0};  // inflection at ε = 2e-4, hyperbolic for ε in (-1.64e-3, 2.04e-3)
   const nc::Law law = m.law();
   struct Case {
