@@ -26,10 +26,9 @@
 /// the character where it failed), uses no name but those above, gives a finite number at
 /// kChecks stretches spanning [min_stretch, max_stretch], is unstressed at s = 1 (p(1) = 0, and
 /// W(1) = rest_density c²), and at every sample has e + p > 0, W'' = −dp/ds > 0 (hyperbolic) and
-/// c_s ≤ c (causal), the failing stretch named; and that the genuine nonlinearity keeps one sign
-/// on the range (convexity_of below): the Riemann solvers take every wave of a material to be a
-/// shock in compression and a fan in expansion, or every one the reverse, so a law with an
-/// inflection is refused, naming the stretch where the sign changes.
+/// c_s ≤ c (causal), the failing stretch named. Where the genuine nonlinearity changes sign on the
+/// range (an inflection), the scene loader refuses the law for the front tracker, as it does any
+/// material's (rigidity/convexity.hpp); the finite-volume solver runs it.
 
 #include <muParser.h>
 
@@ -185,8 +184,9 @@ std::string doc() {
          "`parameters`, rest_density and c (1 in a natural scene, 299792458 in an SI one); its value is in the scene's "
          "units (Pa in an SI scene, rest_density c^2 in a natural one). e, W'' (or p), c_s, the Riemann invariant and "
          "the inverses are derived numerically, as for `tabulated`. Admissible on [min_stretch, max_stretch], where "
-         "it is checked at load (finite, p(1) = 0, e + p > 0, W'' = -dp/ds > 0, c_s <= c, and one sign of the genuine "
-         "nonlinearity: no inflection); errors name the key, the stretch and, for a bad expression, the character. "
+         "it is checked at load (finite, p(1) = 0, e + p > 0, W'' = -dp/ds > 0, c_s <= c; for the front tracker "
+         "also one sign of the genuine nonlinearity: no inflection); errors name the key, the stretch and, for a bad "
+         "expression, the character. "
          "A parameter may be declared with its unit and range: {value: 2.0e9, unit: pressure, min: 0}.";
 }
 
@@ -288,95 +288,11 @@ void check_law(const NumericMaterial& material, const Expression& expression, bo
   }
 }
 
-/// Half the step in ln s of the centred difference that gives dc_s/d(ln s).
-constexpr double kConvexityStep = 1e-4;
-/// |g| below this fraction of the largest c_s on the range counts as zero (linearly degenerate
-/// there): above the error of the difference of the tables' c_s (measured on linearly degenerate
-/// laws, where g = 0: 2.2e-7 of c for the rigid law as a strain energy, 8e-10 as a pressure, 9e-8
-/// for Brotas's Hooke law as a strain energy), below any inflection that matters.
-constexpr double kConvexityTolerance = 1e-4;
-/// Bisection steps that locate an inflection between two samples.
-constexpr int kInflectionSteps = 60;
-
-/// The genuine nonlinearity at ln s: g = dc_s/d(ln s) − c_s (1 − c_s²). Along a fan of the C+
-/// family J− = φ − Ψ is constant and the characteristics run at the lab speed
-/// tanh(J− + Ψ(s) + artanh c_s), along a C− fan at tanh(J+ − Ψ(s) − artanh c_s); with
-/// dΨ/d(ln s) = −c_s, the argument's derivative in ln s is ±g/(1 − c_s²) for either family and
-/// whatever the state. g < 0: compressions are shocks and expansions fans (as for a gas);
-/// g > 0: the reverse; g = 0: linearly degenerate (the rigid law, hooke).
-double genuine_nonlinearity(const Material& material, double log_s, StretchRange window) {
-  // At the window's ends, at the nearest point whose centred difference stays inside it.
-  const double t = std::clamp(log_s, window.log_min + kConvexityStep, window.log_max - kConvexityStep);
-  const double cs = material.sound_speed(Stretch::from_log(t));
-  const double slope = (material.sound_speed(Stretch::from_log(t + kConvexityStep)) -
-                        material.sound_speed(Stretch::from_log(t - kConvexityStep))) /
-                       (2.0 * kConvexityStep);
-  return slope - cs * (1.0 - cs * cs);
-}
-
-/// Refuses a law whose genuine nonlinearity takes both signs on the window: the solvers decide
-/// shock or fan by one sign for the whole range. The stretch named is the change of sign nearest
-/// to s = 1, located by bisection between the samples around it. \throws ParameterError
-void check_convexity(const Material& material, const Expression& expression, StretchRange window) {
-  std::vector<double> logs;
-  for (int k = 0; k <= kChecks; ++k)
-    logs.push_back(window.log_min + (window.log_max - window.log_min) * static_cast<double>(k) / kChecks);
-  double fastest = 0.0;
-  std::vector<double> g;
-  for (const double t : logs) {
-    fastest = std::max(fastest, material.sound_speed(Stretch::from_log(t)));
-    g.push_back(genuine_nonlinearity(material, t, window));
-  }
-  const double tolerance = kConvexityTolerance * fastest;
-  const auto sign = [&](double value) { return value > tolerance ? 1 : value < -tolerance ? -1 : 0; };
-  // The changes of sign, each between the last sample of one sign and the next of the other.
-  std::size_t last = logs.size();  // the last sample with a sign, none yet
-  std::size_t best_a = 0, best_b = 0;
-  bool found = false;
-  for (std::size_t k = 0; k < logs.size(); ++k) {
-    const int here = sign(g[k]);
-    if (here == 0) continue;
-    if (last < logs.size() && sign(g[last]) != here) {
-      const double distance = std::min(std::abs(logs[last]), std::abs(logs[k]));
-      if (!found || distance < std::min(std::abs(logs[best_a]), std::abs(logs[best_b]))) {
-        best_a = last;
-        best_b = k;
-        found = true;
-      }
-    }
-    last = k;
-  }
-  if (!found) return;
-  double a = logs[best_a];
-  double b = logs[best_b];
-  const int sign_a = sign(g[best_a]);
-  for (int step = 0; step < kInflectionSteps; ++step) {
-    const double middle = 0.5 * (a + b);
-    ((genuine_nonlinearity(material, middle, window) < 0.0) == (sign_a < 0) ? a : b) = middle;
-  }
-  const double s = std::exp(0.5 * (a + b));
-  const auto behaviour = [](int g_sign) {
-    return g_sign < 0 ? std::string("compressions are shocks and expansions fans")
-                      : std::string("expansions are shocks and compressions fans");
-  };
-  const double s_a = std::exp(logs[best_a]);
-  const double s_b = std::exp(logs[best_b]);
-  throw ParameterError(
-      expression.key(),
-      expression.quoted() + ": at s = " + text_of(s) +
-          ": not convex: the genuine nonlinearity g = dc_s/d(ln s) - c_s (1 - c_s^2) changes sign there (g = " +
-          text_of(g[best_a]) + " at s = " + text_of(s_a) + ", where " + behaviour(sign_a) +
-          "; g = " + text_of(g[best_b]) + " at s = " + text_of(s_b) + ", where " + behaviour(-sign_a) +
-          "); the solvers need one sign on the range: narrow [min_stretch, max_stretch] to one side of s = " +
-          text_of(s));
-}
-
 class FormulaPressure final : public PressureLawMaterial {
  public:
   FormulaPressure(const ParameterValues& values, Law law)
       : PressureLawMaterial(values.number("rest_density"), law.window), expression_(std::move(law.expression)) {
     check_law(*this, *expression_, true, admissible());
-    check_convexity(*this, *expression_, admissible());
   }
   [[nodiscard]] std::string_view model() const override { return kName; }
 
@@ -390,7 +306,6 @@ class FormulaStrainEnergy final : public StrainEnergyMaterial {
   FormulaStrainEnergy(const ParameterValues& values, Law law)
       : StrainEnergyMaterial(values.number("rest_density"), law.window), expression_(std::move(law.expression)) {
     check_law(*this, *expression_, false, admissible());
-    check_convexity(*this, *expression_, admissible());
   }
   [[nodiscard]] std::string_view model() const override { return kName; }
 
