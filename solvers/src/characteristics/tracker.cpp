@@ -269,9 +269,9 @@ Tracker::BoundParts Tracker::error_bound_parts(double t_end) const {
     if (n.kink > 0.0) error_fans_alive += 0.5 * n.strength * n.kink * std::min(t_end - n.t0, n.kink_dt);
     if (n.front_kind != FrontKind::rarefaction && n.smooth && n.fan == kNone) {
       // Steps of a piston's ramp and what smooth waves become in linearly degenerate bodies
-      // and as weak shocks: the reconstruction's error where it applies.
-      const double e = reconstruction_error(static_cast<int>(id), t_end);
-      if (e < kInf) error_fans_alive += e;
+      // and as weak shocks: the reconstruction's error where it applies, the staircase's where
+      // the samples take the staircase (a step between plateaus, a superposed one).
+      error_fans_alive += fan_error(static_cast<int>(id), t_end, true);
     }
   }
   for (const LightPiece& lp : light_)
