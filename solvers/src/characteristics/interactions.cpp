@@ -64,18 +64,17 @@ void Tracker::schedule_meets(int a, int b) {
 /// family merging is held back (its strength times the length it could sweep is booked).
 /// Returns false (doing nothing) when the full Riemann problem is needed: a crowd, a strong
 /// shock, a fan to split, cavitation.
-bool Tracker::interact_in_place(int a, int b, double t) {
-  if (result_.stats.interactions >= scene_.solver.max_interactions) return false;  // resolve_group reports it
-  Node& na = nodes_[a];
-  Node& nb = nodes_[b];
-  if (na.kind != NodeKind::front || nb.kind != NodeKind::front) return false;
+bool Tracker::cross_in_place(int a, int b, double t, InPlace& c) {
+  const Node& na = nodes_[a];
+  const Node& nb = nodes_[b];
   const Node& before = nodes_[na.prev];
   const Node& after = nodes_[nb.next];
   const Material* m = before.right.material;
   if (m != nb.right.material || m != na.right.material) return false;
   const bool degenerate = m->linearly_degenerate();
   if (degenerate && (na.family != +1 || nb.family != -1)) return false;
-  const double X = 0.5 * (na.X_at(t) + nb.X_at(t));
+  c.X = 0.5 * (na.X_at(t) + nb.X_at(t));
+  const double X = c.X;
   const double tolerance = 8.0 * kEps * (1.0 + std::abs(X));
   if (before.X_at(t) >= X - tolerance || after.X_at(t) <= X + tolerance) return false;  // a crowd: resolve in full
   const State& left = before.right.state;
@@ -91,22 +90,16 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   }
   const Solved<Stretch> star_stretch = memo_->stretch_at_psi(*m, psi_star);
   if (!star_stretch.ok() || !representable(star_stretch.value)) return false;  // resolved in full, and reported
-  State star{0.5 * (j_plus + j_minus), star_stretch.value};
-  double psi_of_star = psi_star;
+  c.star = State{0.5 * (j_plus + j_minus), star_stretch.value};
+  c.psi_star = psi_star;
 
   // The outgoing waves: kinds, strengths, and how far each is from its wave curve.
-  FrontKind kinds[2] = {FrontKind::contact, FrontKind::contact};
-  double off_curve[2] = {0.0, 0.0};
-  bool held_back = false;  // the C− wave, weaker than the threshold, is not emitted
-  bool converged_star = false;
-  FrontSpeeds star_speeds[2];
-  JumpLaws outer_laws[2], star_laws;  // p and e + p of left, right and the star, where evaluated
   // J− across the C− front, J+ across the C+ front (for a linearly degenerate material,
   // those the fronts brought in, passed on).
-  double strength_minus = std::abs(j_minus - (left.rapidity - psi_left));
-  double strength_plus = std::abs(right.rapidity + psi_right - j_plus);
+  c.strength[0] = std::abs(j_minus - (left.rapidity - psi_left));
+  c.strength[1] = std::abs(right.rapidity + psi_right - j_plus);
   if (degenerate) {
-    if (same_state(star, left) || same_state(star, right)) return false;  // a wave vanishes
+    if (same_state(c.star, left) || same_state(c.star, right)) return false;  // a wave vanishes
   } else {
     // The star where the two wave curves meet, to round-off, or as soon as they miss each
     // other by less than star_mismatch_ (then booked on both fronts like a shock held off
@@ -118,7 +111,7 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     // for a fan step; a shock's, third order in its strength, off the integral curve).
     // The star from those jumps misses the exact one by a fourth-order term where the
     // two-rarefaction star misses it by a third-order one.
-    State guess = star;
+    State guess = c.star;
     if (na.family > 0 && nb.family < 0) {
       const State& middle = na.right.state;
       const double psi_middle = psi_of(na.right);
@@ -131,48 +124,67 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     }
     const Solved<SameMaterialStar> found = same_material_star(*m, ends, guess, star_mismatch_);
     if (!found.ok()) return false;
-    star = found.value.state;
-    converged_star = found.value.converged;
-    star_speeds[0] = found.value.speeds[0];
-    star_speeds[1] = found.value.speeds[1];
-    outer_laws[0] = ends.left.laws;
-    outer_laws[1] = ends.right.laws;
-    star_laws = found.value.laws;
-    psi_of_star = m->riemann_psi(star.stretch);
+    c.star = found.value.state;
+    c.converged = found.value.converged;
+    c.star_speeds[0] = found.value.speeds[0];
+    c.star_speeds[1] = found.value.speeds[1];
+    c.outer_laws[0] = ends.left.laws;
+    c.outer_laws[1] = ends.right.laws;
+    c.star_laws = found.value.laws;
+    c.psi_star = m->riemann_psi(c.star.stretch);
     bool shock[2] = {found.value.shock[0], found.value.shock[1]};
-    for (int k = 0; k < 2; ++k) off_curve[k] = shock[k] || !found.value.converged ? found.value.off[k] : 0.0;
-    strength_minus = std::abs((star.rapidity - left.rapidity) - (psi_of_star - psi_left));
-    strength_plus = std::abs((right.rapidity - star.rapidity) + (psi_right - psi_of_star));
-    if (strength_minus < weak_merging_ && na.family == nb.family) {
-      held_back = true;
-      star = left;
-      psi_of_star = psi_left;
+    for (int k = 0; k < 2; ++k) c.off_curve[k] = shock[k] || !found.value.converged ? found.value.off[k] : 0.0;
+    c.strength[0] = std::abs((c.star.rapidity - left.rapidity) - (c.psi_star - psi_left));
+    c.strength[1] = std::abs((right.rapidity - c.star.rapidity) + (psi_right - c.psi_star));
+    if (c.strength[0] < weak_merging_ && na.family == nb.family) {
+      c.held_back = true;
+      c.star = left;
+      c.psi_star = psi_left;
       // The C+ wave now joins `left` to `right`: its curve through `right` at left's stretch.
-      shock[1] = wave_is_shock(*m, right, star.stretch, +1);
-      off_curve[1] = 0.0;
+      shock[1] = wave_is_shock(*m, right, c.star.stretch, +1);
+      c.off_curve[1] = 0.0;
       if (shock[1]) {
-        const Solved<double> exact = hugoniot_rapidity(*m, right, star.stretch, +1);
+        const Solved<double> exact = hugoniot_rapidity(*m, right, c.star.stretch, +1);
         if (!exact.ok()) return false;
-        off_curve[1] = std::abs(exact.value - star.rapidity);
+        c.off_curve[1] = std::abs(exact.value - c.star.rapidity);
       }
-      strength_plus = std::abs((right.rapidity - left.rapidity) + (psi_right - psi_left));
+      c.strength[1] = std::abs((right.rapidity - left.rapidity) + (psi_right - psi_left));
     }
-    for (int k = held_back ? 1 : 0; k < 2; ++k) {
+    for (int k = c.held_back ? 1 : 0; k < 2; ++k) {
       const State& outer = k == 0 ? left : right;
-      if (same_state(outer, star)) return false;
+      if (same_state(outer, c.star)) return false;
       if (shock[k]) {
-        kinds[k] = FrontKind::shock;
-        if (!(off_curve[k] < weak_)) return false;
+        c.kinds[k] = FrontKind::shock;
+        if (!(c.off_curve[k] < weak_)) return false;
       } else {
-        kinds[k] = FrontKind::rarefaction;
-        const double span = std::abs(psi_of_star - (k == 0 ? psi_left : psi_right));
+        c.kinds[k] = FrontKind::rarefaction;
+        const double span = std::abs(c.psi_star - (k == 0 ? psi_left : psi_right));
         // A new fan is split in steps; a step of a smooth wave goes on as one step.
         if (span >= 2.0 * fan_step_ && !na.smooth && !nb.smooth) return false;
       }
     }
   }
 
-  if (held_back && !(std::abs(label_jump_speeds(*m, left, right, +1).lab) < 1.0)) return false;  // no faster than light
+  if (c.held_back && !(std::abs(label_jump_speeds(*m, left, right, +1).lab) < 1.0))
+    return false;  // no faster than light
+  return true;
+}
+
+bool Tracker::interact_in_place(int a, int b, double t) {
+  if (result_.stats.interactions >= scene_.solver.max_interactions) return false;  // resolve_group reports it
+  Node& na = nodes_[a];
+  Node& nb = nodes_[b];
+  if (na.kind != NodeKind::front || nb.kind != NodeKind::front) return false;
+  InPlace c;
+  if (!cross_in_place(a, b, t, c)) return false;
+  const Node& before = nodes_[na.prev];
+  const Node& after = nodes_[nb.next];
+  const Material* m = before.right.material;
+  const bool degenerate = m->linearly_degenerate();
+  const State& left = before.right.state;
+  const State& right = nb.right.state;
+  const double X = c.X;
+  const State& star = c.star;
 
   // Fan steps keep their age through the interaction when they leave as the only step of
   // their family; otherwise the error they carry is booked now.
@@ -190,7 +202,7 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     const int id = static_cast<int>(n - nodes_.data());
     if (n->front_kind == FrontKind::rarefaction) {
       const bool continues =
-          kinds[k] == FrontKind::rarefaction && !(held_back && k == 0) && (na.family != nb.family || degenerate);
+          c.kinds[k] == FrontKind::rarefaction && !(c.held_back && k == 0) && (na.family != nb.family || degenerate);
       if (continues && born[k] == t) {
         born[k] = n->born;
       } else {
@@ -208,9 +220,9 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   close_defect(nb, t);
   record_segment(na, t);
   record_segment(nb, t);
-  if (held_back) {
+  if (c.held_back) {
     ledger_.book_defect(
-        strength_minus *
+        c.strength[0] *
         std::min(piece_length(na.piece), std::abs(speeds_of(before.right, -1).lagrangian) * (scene_.t_end - t)));
     ++suppressed_;
     const int keep_before = na.prev;
@@ -222,7 +234,7 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     nodes_[b].smooth = smooth_in.out(1);
     nodes_[b].kink = 0.0;
     nodes_[b].offset = 0.0;
-    set_front(b, +1, kinds[1], *m, left, right, t, X, x, off_curve[1], born[1], strength_plus);
+    set_front(b, +1, c.kinds[1], *m, left, right, t, X, x, c.off_curve[1], born[1], c.strength[1]);
     schedule_meet(keep_before);
     schedule_meet(b);
     return true;
@@ -234,18 +246,18 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   // `left` (J+ is the same) and its C+ speeds those of `right` (J− is), and so are the
   // speeds of the two fronts.
   Region star_region{m, star};
-  star_region.psi = psi_of_star;
+  star_region.psi = c.psi_star;
   if (degenerate) {
     star_region.speeds[0] = speeds_of(before.right, -1);
     star_region.speeds[1] = speeds_of(nb.right, +1);
-  } else if (converged_star) {
+  } else if (c.converged) {
     // A fan step's curve was asked for its speeds at the star (to round-off) already.
-    star_region.speeds[0] = star_speeds[0];
-    star_region.speeds[1] = star_speeds[1];
+    star_region.speeds[0] = c.star_speeds[0];
+    star_region.speeds[1] = c.star_speeds[1];
   }
   // The laws at the outer states and the star, where the crossing's wave curves asked for them.
-  const JumpLaws laws_minus[2] = {outer_laws[0], star_laws};
-  const JumpLaws laws_plus[2] = {star_laws, outer_laws[1]};
+  const JumpLaws laws_minus[2] = {c.outer_laws[0], c.star_laws};
+  const JumpLaws laws_plus[2] = {c.star_laws, c.outer_laws[1]};
   // cosh and sinh of the three rapidities, for the label jumps of the two fronts and their
   // shocks' dissipation: the outer regions keep theirs for the crossings they meet next.
   const Hyperbolic* at[3] = {nullptr, nullptr, nullptr};
@@ -268,9 +280,9 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   nb.offset = smooth_in.out(1) ? offset_plus : 0.0;
   na.smooth = smooth_in.out(0);
   nb.smooth = smooth_in.out(1);
-  set_front(a, -1, kinds[0], *m, left, star, t, X, x, off_curve[0], born[0], strength_minus,
+  set_front(a, -1, c.kinds[0], *m, left, star, t, X, x, c.off_curve[0], born[0], c.strength[0],
             degenerate ? &star_region.speeds[0] : nullptr, laws_minus, at[0], at[1]);
-  set_front(b, +1, kinds[1], *m, star, right, t, X, x, off_curve[1], born[1], strength_plus,
+  set_front(b, +1, c.kinds[1], *m, star, right, t, X, x, c.off_curve[1], born[1], c.strength[1],
             degenerate ? &star_region.speeds[1] : nullptr, laws_plus, at[1], at[2]);
   na.right = star_region;
   na.carried = carried[0];

@@ -495,7 +495,32 @@ class Tracker {
   void handle(const Event& e);
   void resolve(int seed_left, int seed_right, double t);
   bool rejoin(int right_end, int left_end, double t, double x);
+  /// Two fronts a < b of one piece that meet at t crossed where they meet, without the full
+  /// Riemann problem of resolve_group: the star from the invariants they bring (a linearly
+  /// degenerate material), or where the wave curves meet (a genuinely nonlinear one, see
+  /// same_material_star), the fronts re-set on the waves leaving, their books handed on. False
+  /// where it must be resolved in full (cross_in_place says when).
   bool interact_in_place(int a, int b, double t);
+  /// What a crossing in place emits: where, its star, and for each family ([0] C−, [1] C+) the
+  /// kind of its wave, its strength and how far it lies off its wave curve; held_back: the C−
+  /// wave, weaker than the threshold, is not emitted. What the wave curves evaluated on the way
+  /// is kept for the fronts' speeds, jumps and dissipation.
+  struct InPlace {
+    double X = 0.0;
+    State star;
+    double psi_star = 0.0;
+    FrontKind kinds[2] = {FrontKind::contact, FrontKind::contact};
+    double off_curve[2] = {0.0, 0.0};
+    double strength[2] = {0.0, 0.0};
+    bool held_back = false;
+    bool converged = false;  ///< the star found to round-off (star_speeds are its speeds)
+    FrontSpeeds star_speeds[2];
+    JumpLaws outer_laws[2], star_laws;  ///< p and e + p of left, right and the star, where evaluated
+  };
+  /// The crossing of fronts a < b at t, or false where it is no simple crossing in one
+  /// material: a crowd at the point, a wave that vanishes or would part the body, a new fan
+  /// to split, a star off its curves by more than the threshold, a wave faster than light.
+  bool cross_in_place(int a, int b, double t, InPlace& c);
   int merge_neighbours(int id, double t);
   bool merge_across(int p, int q, double t);
   void merge_nearby(int id, double t);
