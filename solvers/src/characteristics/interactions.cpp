@@ -543,6 +543,61 @@ void Tracker::reanchor(int id, double t) {
   ++n.version;
 }
 
+void Tracker::take_in(const std::vector<int>& group, double t, Incoming& in) {
+  // Remove the fronts of the group; keep ends and interfaces. Their energy books
+  // are closed first, while each front's neighbours are still the states it separated.
+  // A rarefaction step that leaves as the only step of its family keeps its age (its
+  // fan error goes on growing); otherwise the error it carries is booked now.
+  for (int id : group) {
+    Node& n = nodes_[id];
+    const double defect = close_defect(n, t);
+    if (n.kind != NodeKind::front) {
+      in.released += defect;  // a wave held back here leaves now, late by as much
+      in.smooth_in.structure = true;
+      continue;
+    }
+    const int f = n.family > 0 ? 1 : 0;
+    in.smooth_in.add(f, n.smooth,
+                     in.families_in[f] == n.piece && converge(nodes_[in.last_in[f]], n, kSuperposed * fan_step_));
+    in.last_in[f] = id;
+    in.offset_in[f] += n.offset;
+    ++in.count_in[f];
+    in.families_in[f] = n.piece;
+    in.carried_in += n.carried;
+    n.carried = 0.0;
+    // A front back from a light piece has its lab line but no label speed: that of its
+    // family where it runs (the same on both sides of a linearly degenerate jump).
+    const double label_speed = n.dXdt != 0.0 ? n.dXdt : speeds_of(n.right, n.family).lagrangian;
+    in.sweep_in += n.strength * std::abs(label_speed);
+    in.fastest_in = std::max(in.fastest_in, std::abs(label_speed));
+    ++in.fronts_in;
+    account_front_end(id, t);
+    if (n.front_kind == FrontKind::rarefaction || n.smooth) {
+      // The staircase's error, and the least of it and the reconstruction's (fan_error).
+      const double staircase = fan_error(id, t, false);
+      const double reconstructed = std::min(staircase, reconstruction_error(id, t));
+      in.steps_staircase[f] += staircase;
+      if (n.front_kind == FrontKind::rarefaction) {
+        ++in.steps_in[f];
+        in.steps_born[f] = n.born;
+        in.steps_error[f] += reconstructed;
+      } else {
+        in.steps_taken[f] += reconstructed;
+      }
+    }
+    if (!n.smooth) {
+      in.jump_speed[f] = n.dXdt;
+      in.jump_since[f] = n.t0;
+    }
+  }
+  for (int id : group)
+    if (nodes_[id].kind == NodeKind::front) {
+      const int p = nodes_[id].prev, n = nodes_[id].next;
+      link(p, n);
+      kill_node(id, t);
+    }
+}
+
 void Tracker::resolve_group(std::vector<int>& group, double t) {
   // Interactions that keep recreating themselves at one instant (a fan whose steps would
   // converge: a material not convex in the sense the Riemann solver assumes) stop the run.
@@ -608,73 +663,10 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   if (left_boundary && nf.attach == Attach::boundary) flush_wall(nf.partner, t);
   if (right_boundary && nl.attach == Attach::boundary) flush_wall(nl.partner, t);
 
-  // Remove the fronts of the group; keep ends and interfaces. Their energy books
-  // are closed first, while each front's neighbours are still the states it separated.
-  // A rarefaction step that leaves as the only step of its family keeps its age (its
-  // fan error goes on growing); otherwise the error it carries is booked now.
-  int steps_in[2] = {0, 0};
-  double steps_born[2] = {0.0, 0.0}, steps_error[2] = {0.0, 0.0}, steps_staircase[2] = {0.0, 0.0};
-  // Steps of compression waves a jump of their family takes in, and that jump's speed and
-  // anchor time as it came in (see Node::kink).
-  double steps_taken[2] = {0.0, 0.0}, jump_speed[2] = {kInf, kInf}, jump_since[2] = {0.0, 0.0};
-  // The errors the incoming fronts carry, and the rate at which they sweep L1 (strength ×
-  // speed in the labels): shared among the outgoing waves below.
-  double carried_in = 0.0, sweep_in = 0.0, fastest_in = 0.0, released = 0.0;
-  int fronts_in = 0;
-  // Which outgoing waves go on as smooth waves (see smooth_out below), and the offsets of
-  // their steps' values (Node::offset).
-  SmoothIn smooth_in;
-  double offset_in[2] = {0.0, 0.0};
-  int count_in[2] = {0, 0};
-  int families_in[2] = {kNone, kNone};  // the piece each family came in from
-  int last_in[2] = {kNone, kNone};      // the last front of each family that came in
-  for (int id : group) {
-    Node& n = nodes_[id];
-    const double defect = close_defect(n, t);
-    if (n.kind != NodeKind::front) {
-      released += defect;  // a wave held back here leaves now, late by as much
-      smooth_in.structure = true;
-      continue;
-    }
-    const int f = n.family > 0 ? 1 : 0;
-    smooth_in.add(f, n.smooth, families_in[f] == n.piece && converge(nodes_[last_in[f]], n, kSuperposed * fan_step_));
-    last_in[f] = id;
-    offset_in[f] += n.offset;
-    ++count_in[f];
-    families_in[f] = n.piece;
-    carried_in += n.carried;
-    n.carried = 0.0;
-    // A front back from a light piece has its lab line but no label speed: that of its
-    // family where it runs (the same on both sides of a linearly degenerate jump).
-    const double label_speed = n.dXdt != 0.0 ? n.dXdt : speeds_of(n.right, n.family).lagrangian;
-    sweep_in += n.strength * std::abs(label_speed);
-    fastest_in = std::max(fastest_in, std::abs(label_speed));
-    ++fronts_in;
-    account_front_end(id, t);
-    if (n.front_kind == FrontKind::rarefaction || n.smooth) {
-      // The staircase's error, and the least of it and the reconstruction's (fan_error).
-      const double staircase = fan_error(id, t, false);
-      const double reconstructed = std::min(staircase, reconstruction_error(id, t));
-      steps_staircase[f] += staircase;
-      if (n.front_kind == FrontKind::rarefaction) {
-        ++steps_in[f];
-        steps_born[f] = n.born;
-        steps_error[f] += reconstructed;
-      } else {
-        steps_taken[f] += reconstructed;
-      }
-    }
-    if (!n.smooth) {
-      jump_speed[f] = n.dXdt;
-      jump_since[f] = n.t0;
-    }
-  }
-  for (int id : group)
-    if (nodes_[id].kind == NodeKind::front) {
-      const int p = nodes_[id].prev, n = nodes_[id].next;
-      link(p, n);
-      kill_node(id, t);
-    }
+  // What the fronts of the group bring (their books closed, their errors and ages, which
+  // waves go on smooth), and the group without them.
+  Incoming in;
+  take_in(group, t, in);
 
   RiemannSolution sol;
   // No classical solution: the run stops at t and Tracker::run closes the books there. The
@@ -685,7 +677,8 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     try {
       require_solved(sol, limiting, t, x, scene_.units);
     } catch (const InadmissibleError&) {
-      ledger_.lose(carried_in + ledger_.book_fan(steps_error[0] + steps_error[1] + steps_taken[0] + steps_taken[1]));
+      ledger_.lose(in.carried_in +
+                   ledger_.book_fan(in.steps_error[0] + in.steps_error[1] + in.steps_taken[0] + in.steps_taken[1]));
       if (after != kNone && !nodes_[after].alive) {
         int holder = kNone;
         for (auto id = group.rbegin(); id != group.rend() && holder == kNone; ++id)
@@ -758,7 +751,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     steer_droplets(pieces_[left_piece].body);
     droplet = droplet_side(left_piece, XL, t);
     if (droplet != 0) {
-      const State& kept = droplet < 0 ? sol.right : sol.left;  // the rest's released state
+      const State& kept = droplet < 0 ? sol.right : sol.left;  // the rest's in.released state
       const int end = droplet < 0 ? pieces_[left_piece].left_end : pieces_[left_piece].right_end;
       if (!room_for_end(left_piece, droplet, x + droplet * droplet_lab_length(end, XL, kept, t), t)) droplet = 0;
     }
@@ -776,11 +769,11 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   const bool crack = sol.parted && !left_boundary && !right_boundary && contact_left == kNone;
   bool smooth_out[2];
   for (int f = 0; f < 2; ++f) {
-    smooth_out[f] = !crack && (fronts_in > 0 ? smooth_in.out(f) : emit_smooth_);
+    smooth_out[f] = !crack && (in.fronts_in > 0 ? in.smooth_in.out(f) : emit_smooth_);
     if (crack) {
-      steps_error[f] = steps_staircase[f];  // a crack took the steps in
+      in.steps_error[f] = in.steps_staircase[f];  // a crack took the steps in
     } else if (!smooth_out[f]) {
-      steps_error[f] += steps_taken[f];
+      in.steps_error[f] += in.steps_taken[f];
     }
   }
   emitted_left_.clear();
@@ -790,12 +783,12 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   wl.states.clear();
   wr.states.clear();
   if (!left_boundary && droplet >= 0) {
-    wave(*mL, left_region.state, sol.left, -1, !smooth_in.any_smooth, wl);
+    wave(*mL, left_region.state, sol.left, -1, !in.smooth_in.any_smooth, wl);
     emit_smooth_ = smooth_out[0];
     emit_fronts(*mL, wl, -1, left_piece, t, XL, x, emitted_left_);
   }
   if (!right_boundary && droplet <= 0) {
-    wave(*mR, right_region.state, sol.right, +1, !smooth_in.any_smooth, wr);
+    wave(*mR, right_region.state, sol.right, +1, !in.smooth_in.any_smooth, wr);
     emit_smooth_ = smooth_out[1];
     emit_fronts(*mR, wr, +1, right_piece, t, XR, x, emitted_right_);
     // Emitted from the outer state inwards; in space the C+ fan's head (next to the
@@ -803,29 +796,29 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     std::reverse(emitted_right_.begin(), emitted_right_.end());
   }
   emit_smooth_ = false;
-  if (smooth_in.any_smooth) {
+  if (in.smooth_in.any_smooth) {
     // What a smooth wave's step becomes is a step of that wave, not a centred fan of its own.
     for (int id : emitted_left_) leave_fan(nodes_[id]);
     for (int id : emitted_right_) leave_fan(nodes_[id]);
-    set_offsets(first, last, left_boundary, right_boundary, offset_in, count_in, t);
+    set_offsets(first, last, left_boundary, right_boundary, in.offset_in, in.count_in, t);
   }
 
   for (int f = 0; f < 2; ++f) {
     const std::vector<int>& out = f == 0 ? emitted_left_ : emitted_right_;
-    if (smooth_in.any_smooth && jump_speed[f] < kInf && out.size() == 1) {
+    if (in.smooth_in.any_smooth && in.jump_speed[f] < kInf && out.size() == 1) {
       Node& jump = nodes_[out.front()];  // a jump that met a smooth wave's step (Node::kink)
-      jump.kink = std::abs(jump.dXdt - jump_speed[f]);
-      jump.kink_dt = t - jump_since[f];
+      jump.kink = std::abs(jump.dXdt - in.jump_speed[f]);
+      jump.kink_dt = t - in.jump_since[f];
     }
-    if (steps_in[f] == 1 && out.size() == 1 && nodes_[out.front()].front_kind == FrontKind::rarefaction) {
+    if (in.steps_in[f] == 1 && out.size() == 1 && nodes_[out.front()].front_kind == FrontKind::rarefaction) {
       // A step of an older fan goes on: no new centred fan here.
-      nodes_[out.front()].born = steps_born[f];
+      nodes_[out.front()].born = in.steps_born[f];
       leave_fan(nodes_[out.front()]);
     } else {
-      carried_in += ledger_.book_fan(steps_error[f]);
+      in.carried_in += ledger_.book_fan(in.steps_error[f]);
     }
   }
-  share_carried(carried_in, sweep_in, fronts_in, fastest_in, released);
+  share_carried(in.carried_in, in.sweep_in, in.fronts_in, in.fastest_in, in.released);
 
   // Link: [before] − fronts [centre] + fronts [right state holder].
   // The region right of the C− fronts is the left star state, left of the C+ fronts the right star state.
@@ -882,7 +875,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     split_piece(left_of_crack, right_of_crack, sol.left, sol.right, Region{}, right_first, t, XL, x);
     right_holder = pieces_.back().left_end;
     event(t, "cavitation", x, {piece_body_name(left_piece)});
-    if (smooth_in.any_smooth) {
+    if (in.smooth_in.any_smooth) {
       // A smooth wave's step decided this crack: a finer step would part the body elsewhere.
       if (qualitative_cracks_++ == 0) qualitative_body_ = pieces_[left_piece].body;
       qualitative_since_ = std::min(qualitative_since_, t);

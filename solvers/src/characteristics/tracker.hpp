@@ -543,6 +543,31 @@ class Tracker {
     return r.hyperbolic;
   }
   void resolve_group(std::vector<int>& group, double t);
+  /// What the fronts of a group bring to its Riemann problem, per family ([0] C−, [1] C+).
+  struct Incoming {
+    int steps_in[2] = {0, 0};  ///< rarefaction steps
+    double steps_born[2] = {0.0, 0.0};
+    double steps_error[2] = {0.0, 0.0};      ///< their errors (the reconstruction's, or the staircase's)
+    double steps_staircase[2] = {0.0, 0.0};  ///< the staircase's errors of all smooth steps
+    /// Steps of compression waves a jump of their family takes in, and that jump's speed and
+    /// anchor time as it came in (see Node::kink).
+    double steps_taken[2] = {0.0, 0.0}, jump_speed[2] = {kInf, kInf}, jump_since[2] = {0.0, 0.0};
+    /// The errors the incoming fronts carry, and the rate at which they sweep L1 (strength ×
+    /// speed in the labels), shared among the outgoing waves; what waves held back at its
+    /// interfaces and ends booked while held (released).
+    double carried_in = 0.0, sweep_in = 0.0, fastest_in = 0.0, released = 0.0;
+    int fronts_in = 0;
+    /// Which outgoing waves go on as smooth waves, and the offsets of their steps' values.
+    SmoothIn smooth_in;
+    double offset_in[2] = {0.0, 0.0};
+    int count_in[2] = {0, 0};
+    int families_in[2] = {kNone, kNone};  ///< the piece each family came in from
+    int last_in[2] = {kNone, kNone};      ///< the last front of each family that came in
+  };
+  /// Closes the books of a group's fronts at t (energy, defects; a rarefaction step that leaves
+  /// as the only step of its family keeps its age, otherwise its error is booked), sums what
+  /// they bring into `in`, and takes them off the list: the ends and interfaces stay.
+  void take_in(const std::vector<int>& group, double t, Incoming& in);
   /// The offsets (Node::offset) of the smooth steps resolve_group has just emitted, from those
   /// of the fronts that came in (per family: their sum and count).
   void set_offsets(int first, int last, bool left_boundary, bool right_boundary, const double offset_in[2],
