@@ -598,76 +598,60 @@ void Tracker::take_in(const std::vector<int>& group, double t, Incoming& in) {
     }
 }
 
-void Tracker::resolve_group(std::vector<int>& group, double t) {
-  // Interactions that keep recreating themselves at one instant (a fan whose steps would
-  // converge: a material not convex in the sense the Riemann solver assumes) stop the run.
-  if (t != last_interaction_t_) {
-    last_interaction_t_ = t;
-    interactions_at_this_t_ = 0;
-  } else if (++interactions_at_this_t_ > 100 * (static_cast<long>(nodes_.size()) + 100)) {
-    throw NumericalError("the interactions at t = " + number(t) +
-                         " do not advance in time: the waves of a material keep recreating each other there"
-                         " (a material not convex in the sense the Riemann solver assumes?)");
-  }
-  steer_merges();
-  if (++result_.stats.interactions > scene_.solver.max_interactions) {
-    recorder_.stop(budget_stop_reason(scene_, Budget::interactions, t));  // the run stops after this interaction
-  }
-  const int first = group.front(), last = group.back();
-  const Node& nf = nodes_[first];
-  const Node& nl = nodes_[last];
-  const bool left_boundary = nf.kind == NodeKind::left_end;
-  const bool right_boundary = nl.kind == NodeKind::right_end;
-  if (left_boundary && right_boundary) throw NumericalError("a piece of zero length at t = " + number(t));
-
+Tracker::Meeting Tracker::meet(const std::vector<int>& group, double t) const {
+  Meeting g;
+  g.first = group.front();
+  g.last = group.back();
+  const Node& nf = nodes_[g.first];
+  const Node& nl = nodes_[g.last];
+  g.left_boundary = nf.kind == NodeKind::left_end;
+  g.right_boundary = nl.kind == NodeKind::right_end;
+  if (g.left_boundary && g.right_boundary) throw NumericalError("a piece of zero length at t = " + number(t));
   // Structural nodes that survive the interaction.
-  int interface = kNone, contact_left = kNone, contact_right = kNone;
   for (int id : group) {
     const Node& n = nodes_[id];
-    if (n.kind == NodeKind::interface) interface = id;
-    if (n.kind == NodeKind::right_end && id != last) contact_left = id;
-    if (n.kind == NodeKind::left_end && id != first) contact_right = id;
+    if (n.kind == NodeKind::interface) g.interface = id;
+    if (n.kind == NodeKind::right_end && id != g.last) g.contact_left = id;
+    if (n.kind == NodeKind::left_end && id != g.first) g.contact_right = id;
   }
-  // Where the meeting happens in the lab and in each piece's labels.
-  double x = 0.0;
-  {
-    int anchor = interface != kNone ? interface : contact_left != kNone ? contact_left : kNone;
-    if (anchor == kNone && left_boundary) anchor = first;
-    if (anchor == kNone && right_boundary) anchor = last;
-    if (anchor != kNone) {
-      x = nodes_[anchor].x_at(t);
-    } else {
-      double sum = 0.0;
-      for (int id : group) sum += nodes_[id].x_at(t);
-      x = sum / static_cast<double>(group.size());
-    }
-  }
-  auto label_in = [&](int piece) {
-    for (int id : group)
-      if (nodes_[id].piece == piece && nodes_[id].kind != NodeKind::front) return nodes_[id].X_at(t);
+  // Where the meeting happens in the lab.
+  int anchor = g.interface != kNone ? g.interface : g.contact_left != kNone ? g.contact_left : kNone;
+  if (anchor == kNone && g.left_boundary) anchor = g.first;
+  if (anchor == kNone && g.right_boundary) anchor = g.last;
+  if (anchor != kNone) {
+    g.x = nodes_[anchor].x_at(t);
+  } else {
     double sum = 0.0;
-    int count = 0;
-    for (int id : group)
-      if (nodes_[id].piece == piece) sum += nodes_[id].X_at(t), ++count;
-    return sum / count;
-  };
-
+    for (int id : group) sum += nodes_[id].x_at(t);
+    g.x = sum / static_cast<double>(group.size());
+  }
   // The outer states and the problem they pose.
-  const int before = left_boundary ? kNone : nf.prev;  // node whose right region is the left state
-  const int after = right_boundary ? kNone : last;     // node whose right region is the right state
-  const Region left_region = before != kNone ? nodes_[before].right : Region{};
-  const Region right_region = after != kNone ? nodes_[after].right : Region{};
-  const int left_piece = nf.piece, right_piece = nl.piece;
+  g.before = g.left_boundary ? kNone : nf.prev;
+  g.after = g.right_boundary ? kNone : g.last;
+  if (g.before != kNone) g.left_region = nodes_[g.before].right;
+  if (g.after != kNone) g.right_region = nodes_[g.after].right;
+  g.left_piece = nf.piece;
+  g.right_piece = nl.piece;
+  return g;
+}
 
-  // Walls attached at either end lose their current contact pressure now.
-  if (left_boundary && nf.attach == Attach::boundary) flush_wall(nf.partner, t);
-  if (right_boundary && nl.attach == Attach::boundary) flush_wall(nl.partner, t);
+double Tracker::meeting_label(const std::vector<int>& group, int piece, double t) const {
+  for (int id : group)
+    if (nodes_[id].piece == piece && nodes_[id].kind != NodeKind::front) return nodes_[id].X_at(t);
+  double sum = 0.0;
+  int count = 0;
+  for (int id : group)
+    if (nodes_[id].piece == piece) sum += nodes_[id].X_at(t), ++count;
+  return sum / count;
+}
 
-  // What the fronts of the group bring (their books closed, their errors and ages, which
-  // waves go on smooth), and the group without them.
-  Incoming in;
-  take_in(group, t, in);
-
+RiemannSolution Tracker::solve_meeting(const std::vector<int>& group, const Meeting& g, const Incoming& in, double t) {
+  const int first = g.first, last = g.last, before = g.before, after = g.after, right_piece = g.right_piece;
+  const int interface = g.interface, contact_left = g.contact_left;
+  const bool left_boundary = g.left_boundary, right_boundary = g.right_boundary;
+  const double x = g.x;
+  const Region& left_region = g.left_region;
+  const Region& right_region = g.right_region;
   RiemannSolution sol;
   // No classical solution: the run stops at t and Tracker::run closes the books there. The
   // errors the fronts taken in carried stay in its bound, and the right state, which the last
@@ -684,7 +668,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
         for (auto id = group.rbegin(); id != group.rend() && holder == kNone; ++id)
           if (nodes_[*id].alive) holder = *id;
         if (holder == kNone) {
-          const double X = label_in(right_piece);
+          const double X = meeting_label(group, right_piece, t);
           holder = new_node(NodeKind::front, right_piece);
           Node& h = nodes_[holder];
           h.front_kind = FrontKind::contact;
@@ -742,6 +726,51 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     if (holder != kNone && !sol.parted) hold_back_weak_wave(sol, left_region, right_region, holder, min_p, t);
   }
 
+  return sol;
+}
+
+void Tracker::resolve_group(std::vector<int>& group, double t) {
+  // Interactions that keep recreating themselves at one instant (a fan whose steps would
+  // converge: a material not convex in the sense the Riemann solver assumes) stop the run.
+  if (t != last_interaction_t_) {
+    last_interaction_t_ = t;
+    interactions_at_this_t_ = 0;
+  } else if (++interactions_at_this_t_ > 100 * (static_cast<long>(nodes_.size()) + 100)) {
+    throw NumericalError("the interactions at t = " + number(t) +
+                         " do not advance in time: the waves of a material keep recreating each other there"
+                         " (a material not convex in the sense the Riemann solver assumes?)");
+  }
+  steer_merges();
+  if (++result_.stats.interactions > scene_.solver.max_interactions) {
+    recorder_.stop(budget_stop_reason(scene_, Budget::interactions, t));  // the run stops after this interaction
+  }
+  const Meeting g = meet(group, t);
+  const int first = g.first, last = g.last;
+  const Node& nf = nodes_[first];
+  const Node& nl = nodes_[last];
+  const bool left_boundary = g.left_boundary, right_boundary = g.right_boundary;
+  int interface = g.interface;  // kNone once a crack takes it (below)
+  const int contact_left = g.contact_left, contact_right = g.contact_right;
+  const double x = g.x;
+  const int before = g.before;
+  const Region& left_region = g.left_region;
+  const Region& right_region = g.right_region;
+  const int left_piece = g.left_piece, right_piece = g.right_piece;
+  const auto label_in = [&](int piece) { return meeting_label(group, piece, t); };
+
+  // Walls attached at either end lose their current contact pressure now.
+  if (left_boundary && nf.attach == Attach::boundary) flush_wall(nf.partner, t);
+  if (right_boundary && nl.attach == Attach::boundary) flush_wall(nl.partner, t);
+
+  // What the fronts of the group bring (their books closed, their errors and ages, which
+  // waves go on smooth), and the group without them.
+  Incoming in;
+  take_in(group, t, in);
+
+  RiemannSolution sol = solve_meeting(group, g, in, t);
+  const Material* mL = left_region.material;
+  const Material* mR = right_region.material;
+
   // A crack this close to a free end would leave a droplet: the droplet stays with the
   // rest of the piece (see absorb_droplet), and only the rest's wave is emitted.
   const double XL = label_in(left_piece), XR = label_in(right_piece);
@@ -751,7 +780,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     steer_droplets(pieces_[left_piece].body);
     droplet = droplet_side(left_piece, XL, t);
     if (droplet != 0) {
-      const State& kept = droplet < 0 ? sol.right : sol.left;  // the rest's in.released state
+      const State& kept = droplet < 0 ? sol.right : sol.left;  // the rest's released state
       const int end = droplet < 0 ? pieces_[left_piece].left_end : pieces_[left_piece].right_end;
       if (!room_for_end(left_piece, droplet, x + droplet * droplet_lab_length(end, XL, kept, t), t)) droplet = 0;
     }

@@ -543,6 +543,25 @@ class Tracker {
     return r.hyperbolic;
   }
   void resolve_group(std::vector<int>& group, double t);
+  /// Where and between what a group of nodes meets.
+  struct Meeting {
+    int first = kNone, last = kNone;
+    bool left_boundary = false, right_boundary = false;  ///< the group holds the row's outer end on that side
+    int interface = kNone, contact_left = kNone, contact_right = kNone;  ///< structural nodes that survive
+    double x = 0.0;                                                      ///< in the lab
+    int before = kNone, after = kNone;  ///< the nodes whose right regions are the left and right states
+    Region left_region, right_region;   ///< the Riemann problem's outer states
+    int left_piece = kNone, right_piece = kNone;
+  };
+  [[nodiscard]] Meeting meet(const std::vector<int>& group, double t) const;
+  /// The label in `piece` where the group meets: its end's or interface's there, else the
+  /// mean of its fronts'.
+  [[nodiscard]] double meeting_label(const std::vector<int>& group, int piece, double t) const;
+  /// The Riemann problem of a meeting: at an end (a wall's, a piston's, a traction's or a free
+  /// end's), or between its outer states (at a contact of bodies, an interface or inside a
+  /// piece), with a weak wave held back at an interface or contact; a body that leaves a wall
+  /// separates. No classical solution: the run stops at t, what the fronts taken in carried
+  /// stays in the bound, and the right state is put back right of the meeting.
   /// What the fronts of a group bring to its Riemann problem, per family ([0] C−, [1] C+).
   struct Incoming {
     int steps_in[2] = {0, 0};  ///< rarefaction steps
@@ -568,6 +587,7 @@ class Tracker {
   /// as the only step of its family keeps its age, otherwise its error is booked), sums what
   /// they bring into `in`, and takes them off the list: the ends and interfaces stay.
   void take_in(const std::vector<int>& group, double t, Incoming& in);
+  RiemannSolution solve_meeting(const std::vector<int>& group, const Meeting& g, const Incoming& in, double t);
   /// The offsets (Node::offset) of the smooth steps resolve_group has just emitted, from those
   /// of the fronts that came in (per family: their sum and count).
   void set_offsets(int first, int last, bool left_boundary, bool right_boundary, const double offset_in[2],
