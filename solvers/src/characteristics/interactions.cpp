@@ -729,52 +729,18 @@ RiemannSolution Tracker::solve_meeting(const std::vector<int>& group, const Meet
   return sol;
 }
 
-void Tracker::resolve_group(std::vector<int>& group, double t) {
-  // Interactions that keep recreating themselves at one instant (a fan whose steps would
-  // converge: a material not convex in the sense the Riemann solver assumes) stop the run.
-  if (t != last_interaction_t_) {
-    last_interaction_t_ = t;
-    interactions_at_this_t_ = 0;
-  } else if (++interactions_at_this_t_ > 100 * (static_cast<long>(nodes_.size()) + 100)) {
-    throw NumericalError("the interactions at t = " + number(t) +
-                         " do not advance in time: the waves of a material keep recreating each other there"
-                         " (a material not convex in the sense the Riemann solver assumes?)");
-  }
-  steer_merges();
-  if (++result_.stats.interactions > scene_.solver.max_interactions) {
-    recorder_.stop(budget_stop_reason(scene_, Budget::interactions, t));  // the run stops after this interaction
-  }
-  const Meeting g = meet(group, t);
-  const int first = g.first, last = g.last;
-  const Node& nf = nodes_[first];
-  const Node& nl = nodes_[last];
+int Tracker::keep_droplet(const Meeting& g, RiemannSolution& sol, double XL, double t) {
+  const int left_piece = g.left_piece, right_piece = g.right_piece, before = g.before;
   const bool left_boundary = g.left_boundary, right_boundary = g.right_boundary;
-  int interface = g.interface;  // kNone once a crack takes it (below)
-  const int contact_left = g.contact_left, contact_right = g.contact_right;
+  const int contact_left = g.contact_left, interface = g.interface;
   const double x = g.x;
-  const int before = g.before;
   const Region& left_region = g.left_region;
   const Region& right_region = g.right_region;
-  const int left_piece = g.left_piece, right_piece = g.right_piece;
-  const auto label_in = [&](int piece) { return meeting_label(group, piece, t); };
-
-  // Walls attached at either end lose their current contact pressure now.
-  if (left_boundary && nf.attach == Attach::boundary) flush_wall(nf.partner, t);
-  if (right_boundary && nl.attach == Attach::boundary) flush_wall(nl.partner, t);
-
-  // What the fronts of the group bring (their books closed, their errors and ages, which
-  // waves go on smooth), and the group without them.
-  Incoming in;
-  take_in(group, t, in);
-
-  RiemannSolution sol = solve_meeting(group, g, in, t);
   const Material* mL = left_region.material;
   const Material* mR = right_region.material;
-
   // A crack this close to a free end would leave a droplet: the droplet stays with the
   // rest of the piece (see absorb_droplet), and only the rest's wave is emitted.
-  const double XL = label_in(left_piece), XR = label_in(right_piece);
-  int droplet = 0;  // −1: the droplet is left of the crack, +1: right of it
+  int droplet = 0;
   if (sol.parted && !left_boundary && !right_boundary && contact_left == kNone && interface == kNone &&
       left_piece == right_piece && mL == mR) {
     steer_droplets(pieces_[left_piece].body);
@@ -792,6 +758,19 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     }
   }
 
+  return droplet;
+}
+
+void Tracker::emit_waves(const Meeting& g, const RiemannSolution& sol, int droplet, double XL, double XR, Incoming& in,
+                         double t) {
+  const int first = g.first, last = g.last, left_piece = g.left_piece, right_piece = g.right_piece;
+  const bool left_boundary = g.left_boundary, right_boundary = g.right_boundary;
+  const int contact_left = g.contact_left;
+  const double x = g.x;
+  const Region& left_region = g.left_region;
+  const Region& right_region = g.right_region;
+  const Material* mL = left_region.material;
+  const Material* mR = right_region.material;
   // Emit the waves. Each is smooth as smooth_in says, or, with no front coming in, if a piston
   // ramp's step starts it (handle sets emit_smooth_ for it); a crack inside a piece makes
   // jumps (a body leaving a wall or another body reflects a smooth wave as a free end does).
@@ -848,6 +827,57 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     }
   }
   share_carried(in.carried_in, in.sweep_in, in.fronts_in, in.fastest_in, in.released);
+}
+
+void Tracker::resolve_group(std::vector<int>& group, double t) {
+  // Interactions that keep recreating themselves at one instant (a fan whose steps would
+  // converge: a material not convex in the sense the Riemann solver assumes) stop the run.
+  if (t != last_interaction_t_) {
+    last_interaction_t_ = t;
+    interactions_at_this_t_ = 0;
+  } else if (++interactions_at_this_t_ > 100 * (static_cast<long>(nodes_.size()) + 100)) {
+    throw NumericalError("the interactions at t = " + number(t) +
+                         " do not advance in time: the waves of a material keep recreating each other there"
+                         " (a material not convex in the sense the Riemann solver assumes?)");
+  }
+  steer_merges();
+  if (++result_.stats.interactions > scene_.solver.max_interactions) {
+    recorder_.stop(budget_stop_reason(scene_, Budget::interactions, t));  // the run stops after this interaction
+  }
+  const Meeting g = meet(group, t);
+  const int first = g.first, last = g.last;
+  const Node& nf = nodes_[first];
+  const Node& nl = nodes_[last];
+  const bool left_boundary = g.left_boundary, right_boundary = g.right_boundary;
+  int interface = g.interface;  // kNone once a crack takes it (below)
+  const int contact_left = g.contact_left, contact_right = g.contact_right;
+  const double x = g.x;
+  const int before = g.before;
+  const Region& left_region = g.left_region;
+  const Region& right_region = g.right_region;
+  const int left_piece = g.left_piece, right_piece = g.right_piece;
+  const auto label_in = [&](int piece) { return meeting_label(group, piece, t); };
+
+  // Walls attached at either end lose their current contact pressure now.
+  if (left_boundary && nf.attach == Attach::boundary) flush_wall(nf.partner, t);
+  if (right_boundary && nl.attach == Attach::boundary) flush_wall(nl.partner, t);
+
+  // What the fronts of the group bring (their books closed, their errors and ages, which
+  // waves go on smooth), and the group without them.
+  Incoming in;
+  take_in(group, t, in);
+
+  RiemannSolution sol = solve_meeting(group, g, in, t);
+  const Material* mL = left_region.material;
+  const Material* mR = right_region.material;
+
+  // A crack this close to a free end would leave a droplet: the droplet stays with the rest of
+  // the piece (see absorb_droplet), and only the rest's wave is emitted.
+  const double XL = label_in(left_piece), XR = label_in(right_piece);
+  const int droplet = keep_droplet(g, sol, XL, t);  // −1: the droplet is left of the crack, +1: right of it
+  emit_waves(g, sol, droplet, XL, XR, in, t);
+  WaveStates& wl = wave_left_;
+  WaveStates& wr = wave_right_;
 
   // Link: [before] − fronts [centre] + fronts [right state holder].
   // The region right of the C− fronts is the left star state, left of the C+ fronts the right star state.

@@ -588,6 +588,15 @@ class Tracker {
   /// they bring into `in`, and takes them off the list: the ends and interfaces stay.
   void take_in(const std::vector<int>& group, double t, Incoming& in);
   RiemannSolution solve_meeting(const std::vector<int>& group, const Meeting& g, const Incoming& in, double t);
+  /// Where a crack inside a piece would leave a droplet next to a free end, the droplet stays
+  /// with the rest of the piece (absorb_droplet) and the solution takes the rest's state on
+  /// that side: −1 (the droplet left of the crack), +1 (right of it) or 0.
+  int keep_droplet(const Meeting& g, RiemannSolution& sol, double XL, double t);
+  /// The waves of a meeting's solution as fronts (emitted_left_, emitted_right_ left to right;
+  /// wave_left_, wave_right_ their states), smooth as the fronts that came in say; what those
+  /// fronts brought handed on to them (ages, kinks, offsets, errors).
+  void emit_waves(const Meeting& g, const RiemannSolution& sol, int droplet, double XL, double XR, Incoming& in,
+                  double t);
   /// The offsets (Node::offset) of the smooth steps resolve_group has just emitted, from those
   /// of the fronts that came in (per family: their sum and count).
   void set_offsets(int first, int last, bool left_boundary, bool right_boundary, const double offset_in[2],
