@@ -829,6 +829,60 @@ void Tracker::emit_waves(const Meeting& g, const RiemannSolution& sol, int dropl
   share_carried(in.carried_in, in.sweep_in, in.fronts_in, in.fastest_in, in.released);
 }
 
+void Tracker::settle_and_schedule(const Meeting& g, int interface, bool parted_inside, int droplet, int right_holder,
+                                  bool parted, double t) {
+  const int first = g.first, last = g.last, before = g.before, left_piece = g.left_piece, right_piece = g.right_piece;
+  const bool left_boundary = g.left_boundary, right_boundary = g.right_boundary;
+  const int contact_left = g.contact_left, contact_right = g.contact_right;
+  // Structural nodes move with the material next to them; an end whose lab speed
+  // changes may now close (or open) a gap.
+  touched_.clear();
+  bool ends_moved = false;
+  auto settle = [&](int id) {
+    if (id == kNone || !nodes_[id].alive) return;
+    const Node& n = nodes_[id];
+    const Region& r = n.kind == NodeKind::right_end ? nodes_[n.prev].right : n.right;
+    const double v = std::tanh(r.state.rapidity);
+    if (v == n.dxdt) return;
+    reanchor(id, t);
+    nodes_[id].dxdt = v;
+    if (nodes_[id].is_end()) ends_moved = true;
+  };
+  const int new_piece = parted_inside ? static_cast<int>(pieces_.size()) - 1 : kNone;
+  settle(interface);
+  if (left_boundary) settle(first);
+  if (right_boundary) settle(last);
+  settle(contact_left);
+  settle(contact_right);
+  if (parted_inside) {
+    settle(pieces_[left_piece].right_end);
+    settle(pieces_[new_piece].left_end);
+  }
+  if (droplet < 0) settle(pieces_[left_piece].left_end);
+  if (droplet > 0) settle(pieces_[left_piece].right_end);
+
+  // New meetings: each node of the rebuilt stretch with its right neighbour.
+  touched_.push_back(left_boundary ? first : droplet < 0 ? pieces_[left_piece].left_end : before);
+  touched_.insert(touched_.end(), emitted_left_.begin(), emitted_left_.end());
+  if (right_holder != kNone) touched_.push_back(right_holder);
+  touched_.insert(touched_.end(), emitted_right_.begin(), emitted_right_.end());
+  if (interface != kNone) touched_.push_back(interface);
+  std::sort(touched_.begin(), touched_.end());
+  touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
+  for (int id : touched_) schedule_meet(id);
+  for (int id : emitted_left_) merge_neighbours(id, t);
+  for (int id : emitted_right_) merge_neighbours(id, t);
+  for (int id : emitted_left_) merge_nearby(id, t);
+  for (int id : emitted_right_) merge_nearby(id, t);
+  if (ends_moved || parted || droplet != 0)
+    for (int p : {left_piece, right_piece, new_piece})
+      if (p != kNone) schedule_gaps_around(p);
+  // Light pieces take what was emitted into them off the node list, and their next arrivals
+  // follow their ends.
+  if (is_light(left_piece)) absorb_light(left_piece, t);
+  if (right_piece != left_piece && is_light(right_piece)) absorb_light(right_piece, t);
+}
+
 void Tracker::resolve_group(std::vector<int>& group, double t) {
   // Interactions that keep recreating themselves at one instant (a fan whose steps would
   // converge: a material not convex in the sense the Riemann solver assumes) stop the run.
@@ -955,53 +1009,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     }
   }
 
-  // Structural nodes move with the material next to them; an end whose lab speed
-  // changes may now close (or open) a gap.
-  touched_.clear();
-  bool ends_moved = false;
-  auto settle = [&](int id) {
-    if (id == kNone || !nodes_[id].alive) return;
-    const Node& n = nodes_[id];
-    const Region& r = n.kind == NodeKind::right_end ? nodes_[n.prev].right : n.right;
-    const double v = std::tanh(r.state.rapidity);
-    if (v == n.dxdt) return;
-    reanchor(id, t);
-    nodes_[id].dxdt = v;
-    if (nodes_[id].is_end()) ends_moved = true;
-  };
-  const int new_piece = parted_inside ? static_cast<int>(pieces_.size()) - 1 : kNone;
-  settle(interface);
-  if (left_boundary) settle(first);
-  if (right_boundary) settle(last);
-  settle(contact_left);
-  settle(contact_right);
-  if (parted_inside) {
-    settle(pieces_[left_piece].right_end);
-    settle(pieces_[new_piece].left_end);
-  }
-  if (droplet < 0) settle(pieces_[left_piece].left_end);
-  if (droplet > 0) settle(pieces_[left_piece].right_end);
-
-  // New meetings: each node of the rebuilt stretch with its right neighbour.
-  touched_.push_back(left_boundary ? first : droplet < 0 ? pieces_[left_piece].left_end : before);
-  touched_.insert(touched_.end(), emitted_left_.begin(), emitted_left_.end());
-  if (right_holder != kNone) touched_.push_back(right_holder);
-  touched_.insert(touched_.end(), emitted_right_.begin(), emitted_right_.end());
-  if (interface != kNone) touched_.push_back(interface);
-  std::sort(touched_.begin(), touched_.end());
-  touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
-  for (int id : touched_) schedule_meet(id);
-  for (int id : emitted_left_) merge_neighbours(id, t);
-  for (int id : emitted_right_) merge_neighbours(id, t);
-  for (int id : emitted_left_) merge_nearby(id, t);
-  for (int id : emitted_right_) merge_nearby(id, t);
-  if (ends_moved || sol.parted || droplet != 0)
-    for (int p : {left_piece, right_piece, new_piece})
-      if (p != kNone) schedule_gaps_around(p);
-  // Light pieces take what was emitted into them off the node list, and their next arrivals
-  // follow their ends.
-  if (is_light(left_piece)) absorb_light(left_piece, t);
-  if (right_piece != left_piece && is_light(right_piece)) absorb_light(right_piece, t);
+  settle_and_schedule(g, interface, parted_inside, droplet, right_holder, sol.parted, t);
 }
 
 /// The errors the fronts of a group carried in (and what their fan steps booked there) go on

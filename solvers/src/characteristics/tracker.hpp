@@ -597,6 +597,11 @@ class Tracker {
   /// fronts brought handed on to them (ages, kinks, offsets, errors).
   void emit_waves(const Meeting& g, const RiemannSolution& sol, int droplet, double XL, double XR, Incoming& in,
                   double t);
+  /// After a meeting is linked in: its structural nodes move with the material next to them
+  /// (an end whose speed changed may close or open a gap), the rebuilt stretch's meetings are
+  /// scheduled, the fronts emitted merge where cheap, and light pieces take theirs back.
+  void settle_and_schedule(const Meeting& g, int interface, bool parted_inside, int droplet, int right_holder,
+                           bool parted, double t);
   /// The offsets (Node::offset) of the smooth steps resolve_group has just emitted, from those
   /// of the fronts that came in (per family: their sum and count).
   void set_offsets(int first, int last, bool left_boundary, bool right_boundary, const double offset_in[2],
