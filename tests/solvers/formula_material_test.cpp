@@ -5,32 +5,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <tuple>
 
+#include "config_text.hpp"
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/solve.hpp"
 
 namespace rigidity {
 namespace {
 
-std::string config(const std::string& name) {
-  std::ifstream in(std::string(RIGIDITY_SOURCE_DIR) + "/configs/" + name);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-/// `text` with `from` (which must occur) replaced by `to`.
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const std::size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
-}
+using test::replaced;
+std::string config(const std::string& name) { return test::config_text(name); }
 
 RunResult run(const std::string& yaml) { return solve(load_scene_string(yaml, "<formula test>")); }
 

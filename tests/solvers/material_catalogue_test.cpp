@@ -7,11 +7,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <functional>
-#include <sstream>
 #include <string>
 
+#include "config_text.hpp"
+#include "exact/bisection.hpp"
 #include "rigidity/errors.hpp"
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/solve.hpp"
@@ -21,24 +21,8 @@ namespace {
 
 constexpr double kC = 299792458.0;  // [m/s]
 
-std::string catalogue_file(const std::string& name) {
-  return std::string(RIGIDITY_SOURCE_DIR) + "/configs/materials/" + name;
-}
-
-std::string catalogue_text(const std::string& name) {
-  std::ifstream in(catalogue_file(name));
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-/// `text` with `from` (which must occur) replaced by `to`.
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const std::size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
-}
+std::string catalogue_text(const std::string& name) { return test::config_text("materials/" + name); }
+using test::replaced;
 
 Scene load(const std::string& text) { return load_scene_string(text, "catalogue.yaml"); }
 
@@ -57,15 +41,8 @@ double refused_at(const std::string& text, const std::string& what) {
   return std::nan("");
 }
 
-/// The root of f in [a, b], where f changes sign, by bisection.
-double root(const std::function<double(double)>& f, double a, double b) {
-  const bool negative_at_a = f(a) < 0.0;
-  for (int k = 0; k < 200; ++k) {
-    const double m = 0.5 * (a + b);
-    ((f(m) < 0.0) == negative_at_a ? a : b) = m;
-  }
-  return 0.5 * (a + b);
-}
+/// The root of f in [a, b], where f changes sign (exact/bisection.hpp).
+double root(const std::function<double(double)>& f, double a, double b) { return exact::bisect(f, a, b); }
 
 /// ∫_a^b f by Simpson's rule on n (even) intervals.
 double simpson(const std::function<double(double)>& f, double a, double b, int n = 2000) {
