@@ -356,15 +356,15 @@ void Tracker::report_error_bound(const BoundParts& bound) {
         "merges that held the live fronts to their cap (max(" + number(kMinFrontsPerBody) + ", " +
             number(kFrontsPerBody) +
             "/tolerance) per body): the waves scatter into more fronts than the cap lets the run follow",
-        "the steps of smooth waves (fans and piston ramps, reconstructed between them where they "
-        "cross only each other, staircases where shocks and rigid bodies meet them; the widest step is "
-        "fan_step_max)",
+        ("the steps of smooth waves (fans and piston ramps, reconstructed between them where they "
+         "cross only each other, staircases where shocks and rigid bodies meet them; the widest step is "
+         "fan_step_max)"),
         "weak waves held back at interfaces and contacts", "droplets kept with their pieces"};
     // What a smaller tolerance does to each part, and at what cost.
     static constexpr const char* kLower[4] = {
         "a smaller tolerance raises the cap, at a cost that grows as its inverse square",
-        "a smaller tolerance lowers it in proportion where the waves are reconstructed (and as its square root "
-        "where they are staircases), at a cost that grows as its inverse",
+        ("a smaller tolerance lowers it in proportion where the waves are reconstructed (and as its square root "
+         "where they are staircases), at a cost that grows as its inverse"),
         "a smaller tolerance lowers it in proportion", "a smaller tolerance lowers it"};
     if (!(largest == 3 && spray_coarsened)) {  // a spray has said so above
       // What merges and fan steps made, once the waves that carry it have split at
