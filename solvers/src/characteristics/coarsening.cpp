@@ -130,6 +130,78 @@ int Tracker::merge_neighbours(int id, double t) {
   }
 }
 
+void Tracker::apply_merge_across(int p, int q, std::size_t split, double X_merged, double cost, double j_before,
+                                 double j_after_q, bool extend_left, double t) {
+  const Material& m = *nodes_[p].right.material;
+  const int f = nodes_[p].family;
+  const int left_of_p = nodes_[p].prev, right_of_q = nodes_[q].next;
+  ++merged_;
+  const int start = left_of_p;
+  double X_cursor = segments_.front().a;
+  double x_cursor = extend_left ? nodes_[left_of_p].x_at(t) : nodes_[p].x_at(t);
+  const double carried = nodes_[p].carried + nodes_[q].carried + ledger_.book_merge(cost);
+  nodes_[p].carried = nodes_[q].carried = 0.0;
+  const bool smooth = nodes_[p].smooth && nodes_[q].smooth;
+  kill_node(p, t);
+  kill_node(q, t);
+  const int merged = new_node(NodeKind::front, nodes_[start].piece);
+  live_fronts_max_ = std::max(live_fronts_max_, ++live_fronts_);
+  ++result_.stats.fronts;
+  Node& mn = nodes_[merged];
+  mn.family = f;
+  mn.front_kind = FrontKind::contact;
+  mn.born = t;
+  mn.strength = std::abs(j_after_q - j_before);
+  mn.carried = carried;
+  mn.smooth = smooth;
+  int cursor = start;
+  const auto advance = [&](double X, const State& st) {
+    x_cursor += (X - X_cursor) * label_density(st);
+    X_cursor = X;
+  };
+  const auto place = [&](int id) {
+    Node& n = nodes_[id];
+    if (id != merged) record_segment(n, t);
+    link(cursor, id);
+    n.t0 = t;
+    n.X0 = X_cursor;
+    n.x0 = x_cursor;
+    ++n.version;
+    cursor = id;
+  };
+  nodes_[cursor].right = Region{&m, split == 0 ? segments_.front().left : segments_.front().right};
+  for (std::size_t i = 0; i < segments_.size(); ++i) {
+    const MergeSegment& g = segments_[i];
+    const State& here = i < split ? g.left : g.right;
+    if (i == split) {
+      advance(X_merged, g.left);
+      nodes_[cursor].right = Region{&m, g.left};
+      place(merged);
+      nodes_[merged].right = Region{&m, g.right};
+    } else {
+      nodes_[cursor].right = Region{&m, here};
+    }
+    advance(g.b, here);
+    if (g.right_node == right_of_q) break;
+    if (g.right_node != kNone) place(g.right_node);
+  }
+  link(cursor, right_of_q);
+  for (int n = nodes_[start].next; n != right_of_q; n = nodes_[n].next) {
+    const FrontSpeeds sp = characteristic_speeds(m, nodes_[n].right.state, nodes_[n].family);
+    nodes_[n].dXdt = sp.lagrangian;
+    nodes_[n].dxdt = sp.lab;
+  }
+  if (nodes_[start].kind == NodeKind::front) {
+    // Its right state changed: a front of this material keeps the speed of its side.
+    reanchor(start, t);
+    const FrontSpeeds sp = characteristic_speeds(m, nodes_[start].right.state, nodes_[start].family);
+    nodes_[start].dXdt = sp.lagrangian;
+    nodes_[start].dxdt = sp.lab;
+  }
+  if (nodes_[start].prev != kNone) schedule_meet(nodes_[start].prev);
+  for (int n = start; n != right_of_q; n = nodes_[n].next) schedule_meet(n);
+}
+
 /// For a linearly degenerate material the jumps of J+ and J− are carried independently, so
 /// two fronts p < q of one family f may be merged across fronts of the other family between
 /// them: regions left of the merged front's label X̄ take the f-invariant from before p,
@@ -227,72 +299,8 @@ bool Tracker::merge_across(int p, int q, double t) {
   }
   if (cost > merge_) return false;
 
-  // Apply: p and q leave; one front of family f enters at X̄.
-  ++merged_;
-  const int start = left_of_p;
-  double X_cursor = segments_.front().a;
-  double x_cursor = extend_left ? nodes_[left_of_p].x_at(t) : nodes_[p].x_at(t);
-  const double carried = nodes_[p].carried + nodes_[q].carried + ledger_.book_merge(cost);
-  nodes_[p].carried = nodes_[q].carried = 0.0;
-  const bool smooth = nodes_[p].smooth && nodes_[q].smooth;
-  kill_node(p, t);
-  kill_node(q, t);
-  const int merged = new_node(NodeKind::front, nodes_[start].piece);
-  live_fronts_max_ = std::max(live_fronts_max_, ++live_fronts_);
-  ++result_.stats.fronts;
-  Node& mn = nodes_[merged];
-  mn.family = f;
-  mn.front_kind = FrontKind::contact;
-  mn.born = t;
-  mn.strength = std::abs(j_after_q - j_before);
-  mn.carried = carried;
-  mn.smooth = smooth;
-  int cursor = start;
-  const auto advance = [&](double X, const State& st) {
-    x_cursor += (X - X_cursor) * label_density(st);
-    X_cursor = X;
-  };
-  const auto place = [&](int id) {
-    Node& n = nodes_[id];
-    if (id != merged) record_segment(n, t);
-    link(cursor, id);
-    n.t0 = t;
-    n.X0 = X_cursor;
-    n.x0 = x_cursor;
-    ++n.version;
-    cursor = id;
-  };
-  nodes_[cursor].right = Region{&m, split == 0 ? segments_.front().left : segments_.front().right};
-  for (std::size_t i = 0; i < segments_.size(); ++i) {
-    const MergeSegment& g = segments_[i];
-    const State& here = i < split ? g.left : g.right;
-    if (i == split) {
-      advance(X_merged, g.left);
-      nodes_[cursor].right = Region{&m, g.left};
-      place(merged);
-      nodes_[merged].right = Region{&m, g.right};
-    } else {
-      nodes_[cursor].right = Region{&m, here};
-    }
-    advance(g.b, here);
-    if (g.right_node == right_of_q) break;
-    if (g.right_node != kNone) place(g.right_node);
-  }
-  link(cursor, right_of_q);
-  for (int n = nodes_[start].next; n != right_of_q; n = nodes_[n].next) {
-    const FrontSpeeds sp = characteristic_speeds(m, nodes_[n].right.state, nodes_[n].family);
-    nodes_[n].dXdt = sp.lagrangian;
-    nodes_[n].dxdt = sp.lab;
-  }
-  if (nodes_[start].kind == NodeKind::front) {
-    // Its right state changed: a front of this material keeps the speed of its side.
-    reanchor(start, t);
-    const FrontSpeeds sp = characteristic_speeds(m, nodes_[start].right.state, nodes_[start].family);
-    nodes_[start].dXdt = sp.lagrangian;
-    nodes_[start].dxdt = sp.lab;
-  }
-  if (nodes_[start].prev != kNone) schedule_meet(nodes_[start].prev);
-  for (int n = start; n != right_of_q; n = nodes_[n].next) schedule_meet(n);
+  // p and q leave; one front of family f enters at X̄.
+  apply_merge_across(p, q, split, X_merged, cost, j_before, j_after_q, extend_left, t);
   return true;
 }
 

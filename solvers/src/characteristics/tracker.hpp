@@ -523,6 +523,12 @@ class Tracker {
   bool cross_in_place(int a, int b, double t, InPlace& c);
   int merge_neighbours(int id, double t);
   bool merge_across(int p, int q, double t);
+  /// Puts merge_across's result in place: p and q leave, one front of their family enters at
+  /// X_merged (in segments_[split]), the regions between take their new states, the nodes
+  /// between are re-anchored with lab positions rebuilt from the left and their meetings
+  /// rescheduled; the merge's cost is booked and carried with the two fronts' errors.
+  void apply_merge_across(int p, int q, std::size_t split, double X_merged, double cost, double j_before,
+                          double j_after_q, bool extend_left, double t);
   void merge_nearby(int id, double t);
   struct MergeSegment {
     double a, b;        ///< label extent at the time of the merge
