@@ -170,6 +170,37 @@ bool Tracker::cross_in_place(int a, int b, double t, InPlace& c) {
   return true;
 }
 
+void Tracker::hand_on_in_place(int a, int b, double t, InPlace& c) {
+  Node& na = nodes_[a];
+  Node& nb = nodes_[b];
+  const bool degenerate = na.right.material->linearly_degenerate();
+  // Fan steps keep their age through the interaction when they leave as the only step of
+  // their family; otherwise the error they carry is booked now.
+  c.born[0] = c.born[1] = t;
+  c.smooth_in.add(na.family > 0 ? 1 : 0, na.smooth, false);
+  c.smooth_in.add(nb.family > 0 ? 1 : 0, nb.smooth,
+                  na.family == nb.family && converge(na, nb, kSuperposed * fan_step_));
+  // The errors the outgoing waves carry ([0] C−, [1] C+): each incoming front's goes on with
+  // the wave of its family (two of one family merge into one), with what its fan step booked.
+  for (Node* n : {&na, &nb}) {
+    const int k = n->family > 0 ? 1 : 0;
+    c.carried[k] += n->carried;
+    n->carried = 0.0;
+    const int id = static_cast<int>(n - nodes_.data());
+    if (n->front_kind == FrontKind::rarefaction) {
+      const bool continues =
+          c.kinds[k] == FrontKind::rarefaction && !(c.held_back && k == 0) && (na.family != nb.family || degenerate);
+      if (continues && c.born[k] == t) {
+        c.born[k] = n->born;
+      } else {
+        c.carried[k] += book_fan_error(id, t);
+      }
+    } else if (n->smooth && !c.smooth_in.out(k)) {
+      c.carried[k] += book_fan_error(id, t);  // a step of a compression wave a jump takes in
+    }
+  }
+}
+
 bool Tracker::interact_in_place(int a, int b, double t) {
   if (result_.stats.interactions >= scene_.solver.max_interactions) return false;  // resolve_group reports it
   Node& na = nodes_[a];
@@ -186,32 +217,7 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   const double X = c.X;
   const State& star = c.star;
 
-  // Fan steps keep their age through the interaction when they leave as the only step of
-  // their family; otherwise the error they carry is booked now.
-  double born[2] = {t, t};
-  // The errors the outgoing waves carry ([0] C−, [1] C+): each incoming front's goes on with
-  // the wave of its family (two of one family merge into one), with what its fan step booked.
-  double carried[2] = {0.0, 0.0};
-  SmoothIn smooth_in;
-  smooth_in.add(na.family > 0 ? 1 : 0, na.smooth, false);
-  smooth_in.add(nb.family > 0 ? 1 : 0, nb.smooth, na.family == nb.family && converge(na, nb, kSuperposed * fan_step_));
-  for (Node* n : {&na, &nb}) {
-    const int k = n->family > 0 ? 1 : 0;
-    carried[k] += n->carried;
-    n->carried = 0.0;
-    const int id = static_cast<int>(n - nodes_.data());
-    if (n->front_kind == FrontKind::rarefaction) {
-      const bool continues =
-          c.kinds[k] == FrontKind::rarefaction && !(c.held_back && k == 0) && (na.family != nb.family || degenerate);
-      if (continues && born[k] == t) {
-        born[k] = n->born;
-      } else {
-        carried[k] += book_fan_error(id, t);
-      }
-    } else if (n->smooth && !smooth_in.out(k)) {
-      carried[k] += book_fan_error(id, t);  // a step of a compression wave a jump takes in
-    }
-  }
+  hand_on_in_place(a, b, t, c);
 
   ++result_.stats.interactions;
   steer_merges();
@@ -229,12 +235,12 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     account_front_end(a, t);  // its shock books close while its neighbours are still its own
     link(keep_before, b);
     kill_node(a, t);
-    ledger_.lose(carried[0]);  // the C− wave held back (its strength is booked above)
-    nodes_[b].carried = carried[1];
-    nodes_[b].smooth = smooth_in.out(1);
+    ledger_.lose(c.carried[0]);  // the C− wave held back (its strength is booked above)
+    nodes_[b].carried = c.carried[1];
+    nodes_[b].smooth = c.smooth_in.out(1);
     nodes_[b].kink = 0.0;
     nodes_[b].offset = 0.0;
-    set_front(b, +1, c.kinds[1], *m, left, right, t, X, x, c.off_curve[1], born[1], c.strength[1]);
+    set_front(b, +1, c.kinds[1], *m, left, right, t, X, x, c.off_curve[1], c.born[1], c.strength[1]);
     schedule_meet(keep_before);
     schedule_meet(b);
     return true;
@@ -276,17 +282,17 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   // Each wave's step goes on with its value (two of one family meeting make a jump).
   const double offset_minus = na.family != nb.family ? (na.family < 0 ? na.offset : nb.offset) : 0.0;
   const double offset_plus = na.family != nb.family ? (na.family > 0 ? na.offset : nb.offset) : 0.0;
-  na.offset = smooth_in.out(0) ? offset_minus : 0.0;
-  nb.offset = smooth_in.out(1) ? offset_plus : 0.0;
-  na.smooth = smooth_in.out(0);
-  nb.smooth = smooth_in.out(1);
-  set_front(a, -1, c.kinds[0], *m, left, star, t, X, x, c.off_curve[0], born[0], c.strength[0],
+  na.offset = c.smooth_in.out(0) ? offset_minus : 0.0;
+  nb.offset = c.smooth_in.out(1) ? offset_plus : 0.0;
+  na.smooth = c.smooth_in.out(0);
+  nb.smooth = c.smooth_in.out(1);
+  set_front(a, -1, c.kinds[0], *m, left, star, t, X, x, c.off_curve[0], c.born[0], c.strength[0],
             degenerate ? &star_region.speeds[0] : nullptr, laws_minus, at[0], at[1]);
-  set_front(b, +1, c.kinds[1], *m, star, right, t, X, x, c.off_curve[1], born[1], c.strength[1],
+  set_front(b, +1, c.kinds[1], *m, star, right, t, X, x, c.off_curve[1], c.born[1], c.strength[1],
             degenerate ? &star_region.speeds[1] : nullptr, laws_plus, at[1], at[2]);
   na.right = star_region;
-  na.carried = carried[0];
-  nb.carried = carried[1];
+  na.carried = c.carried[0];
+  nb.carried = c.carried[1];
   if (jump_in != nullptr) {
     Node& jump = jump_family < 0 ? na : nb;
     jump.kink = std::abs(jump.dXdt - jump_speed);

@@ -516,11 +516,20 @@ class Tracker {
     bool converged = false;  ///< the star found to round-off (star_speeds are its speeds)
     FrontSpeeds star_speeds[2];
     JumpLaws outer_laws[2], star_laws;  ///< p and e + p of left, right and the star, where evaluated
+    /// What the incoming fronts hand on (hand_on_in_place): the age of a fan step that goes on
+    /// as its family's only step, the errors each outgoing wave carries, which go on smooth.
+    double born[2] = {0.0, 0.0};
+    double carried[2] = {0.0, 0.0};
+    SmoothIn smooth_in;
   };
   /// The crossing of fronts a < b at t, or false where it is no simple crossing in one
   /// material: a crowd at the point, a wave that vanishes or would part the body, a new fan
   /// to split, a star off its curves by more than the threshold, a wave faster than light.
   bool cross_in_place(int a, int b, double t, InPlace& c);
+  /// What fronts a and b hand on to the waves leaving their crossing (c.born, c.carried,
+  /// c.smooth_in): each front's carried error goes with the wave of its family, a fan step's
+  /// age goes on where it leaves as the only step of its family, else its error is booked.
+  void hand_on_in_place(int a, int b, double t, InPlace& c);
   int merge_neighbours(int id, double t);
   bool merge_across(int p, int q, double t);
   /// Puts merge_across's result in place: p and q leave, one front of their family enters at
