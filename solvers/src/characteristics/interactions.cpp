@@ -889,53 +889,15 @@ void Tracker::settle_and_schedule(const Meeting& g, int interface, bool parted_i
   if (right_piece != left_piece && is_light(right_piece)) absorb_light(right_piece, t);
 }
 
-void Tracker::resolve_group(std::vector<int>& group, double t) {
-  // Interactions that keep recreating themselves at one instant (a fan whose steps would
-  // converge: a material not convex in the sense the Riemann solver assumes) stop the run.
-  if (t != last_interaction_t_) {
-    last_interaction_t_ = t;
-    interactions_at_this_t_ = 0;
-  } else if (++interactions_at_this_t_ > 100 * (static_cast<long>(nodes_.size()) + 100)) {
-    throw NumericalError("the interactions at t = " + number(t) +
-                         " do not advance in time: the waves of a material keep recreating each other there"
-                         " (a material not convex in the sense the Riemann solver assumes?)");
-  }
-  steer_merges();
-  if (++result_.stats.interactions > scene_.solver.max_interactions) {
-    recorder_.stop(budget_stop_reason(scene_, Budget::interactions, t));  // the run stops after this interaction
-  }
-  const Meeting g = meet(group, t);
-  const int first = g.first, last = g.last;
-  const Node& nf = nodes_[first];
-  const Node& nl = nodes_[last];
+int Tracker::link_waves(const Meeting& g, const RiemannSolution& sol, int droplet, double XL, bool smooth_in,
+                        int& interface, bool& parted_inside, double t) {
+  const int first = g.first, before = g.before, left_piece = g.left_piece, right_piece = g.right_piece;
   const bool left_boundary = g.left_boundary, right_boundary = g.right_boundary;
-  int interface = g.interface;  // kNone once a crack takes it (below)
   const int contact_left = g.contact_left, contact_right = g.contact_right;
   const double x = g.x;
-  const int before = g.before;
-  const Region& left_region = g.left_region;
   const Region& right_region = g.right_region;
-  const int left_piece = g.left_piece, right_piece = g.right_piece;
-  const auto label_in = [&](int piece) { return meeting_label(group, piece, t); };
-
-  // Walls attached at either end lose their current contact pressure now.
-  if (left_boundary && nf.attach == Attach::boundary) flush_wall(nf.partner, t);
-  if (right_boundary && nl.attach == Attach::boundary) flush_wall(nl.partner, t);
-
-  // What the fronts of the group bring (their books closed, their errors and ages, which
-  // waves go on smooth), and the group without them.
-  Incoming in;
-  take_in(group, t, in);
-
-  RiemannSolution sol = solve_meeting(group, g, in, t);
-  const Material* mL = left_region.material;
+  const Material* mL = g.left_region.material;
   const Material* mR = right_region.material;
-
-  // A crack this close to a free end would leave a droplet: the droplet stays with the rest of
-  // the piece (see absorb_droplet), and only the rest's wave is emitted.
-  const double XL = label_in(left_piece), XR = label_in(right_piece);
-  const int droplet = keep_droplet(g, sol, XL, t);  // −1: the droplet is left of the crack, +1: right of it
-  emit_waves(g, sol, droplet, XL, XR, in, t);
   WaveStates& wl = wave_left_;
   WaveStates& wr = wave_right_;
 
@@ -947,7 +909,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     return Region{mR, wr.states[m - k - 1]};
   };
 
-  bool parted_inside = !left_boundary && !right_boundary && sol.parted && contact_left == kNone;
+  parted_inside = !left_boundary && !right_boundary && sol.parted && contact_left == kNone;
   if (!left_boundary && !right_boundary && sol.parted && contact_left != kNone) {
     // Two bodies in contact separate.
     set_attach(contact_left, Attach::free, kNone, t);
@@ -994,7 +956,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
     split_piece(left_of_crack, right_of_crack, sol.left, sol.right, Region{}, right_first, t, XL, x);
     right_holder = pieces_.back().left_end;
     event(t, "cavitation", x, {piece_body_name(left_piece)});
-    if (in.smooth_in.any_smooth) {
+    if (smooth_in) {
       // A smooth wave's step decided this crack: a finer step would part the body elsewhere.
       if (qualitative_cracks_++ == 0) qualitative_body_ = pieces_[left_piece].body;
       qualitative_since_ = std::min(qualitative_since_, t);
@@ -1014,7 +976,47 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
       c = id;
     }
   }
+  return right_holder;
+}
 
+void Tracker::resolve_group(std::vector<int>& group, double t) {
+  // Interactions that keep recreating themselves at one instant (a fan whose steps would
+  // converge: a material not convex in the sense the Riemann solver assumes) stop the run.
+  if (t != last_interaction_t_) {
+    last_interaction_t_ = t;
+    interactions_at_this_t_ = 0;
+  } else if (++interactions_at_this_t_ > 100 * (static_cast<long>(nodes_.size()) + 100)) {
+    throw NumericalError("the interactions at t = " + number(t) +
+                         " do not advance in time: the waves of a material keep recreating each other there"
+                         " (a material not convex in the sense the Riemann solver assumes?)");
+  }
+  steer_merges();
+  if (++result_.stats.interactions > scene_.solver.max_interactions) {
+    recorder_.stop(budget_stop_reason(scene_, Budget::interactions, t));  // the run stops after this interaction
+  }
+  const Meeting g = meet(group, t);
+  const Node& nf = nodes_[g.first];
+  const Node& nl = nodes_[g.last];
+  // Walls attached at either end lose their current contact pressure now.
+  if (g.left_boundary && nf.attach == Attach::boundary) flush_wall(nf.partner, t);
+  if (g.right_boundary && nl.attach == Attach::boundary) flush_wall(nl.partner, t);
+
+  // What the fronts of the group bring (their books closed, their errors and ages, which
+  // waves go on smooth), and the group without them.
+  Incoming in;
+  take_in(group, t, in);
+  RiemannSolution sol = solve_meeting(group, g, in, t);
+
+  // A crack this close to a free end would leave a droplet: the droplet stays with the rest of
+  // the piece (see absorb_droplet), and only the rest's wave is emitted.
+  const double XL = meeting_label(group, g.left_piece, t), XR = meeting_label(group, g.right_piece, t);
+  const int droplet = keep_droplet(g, sol, XL, t);  // −1: the droplet is left of the crack, +1: right of it
+  emit_waves(g, sol, droplet, XL, XR, in, t);
+  // Link: [before] − fronts [centre] + fronts [right state holder]; a crack splits the piece
+  // (and an interface there goes).
+  int interface = g.interface;
+  bool parted_inside = false;
+  const int right_holder = link_waves(g, sol, droplet, XL, in.smooth_in.any_smooth, interface, parted_inside, t);
   settle_and_schedule(g, interface, parted_inside, droplet, right_holder, sol.parted, t);
 }
 

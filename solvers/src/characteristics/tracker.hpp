@@ -615,6 +615,13 @@ class Tracker {
   /// After a meeting is linked in: its structural nodes move with the material next to them
   /// (an end whose speed changed may close or open a gap), the rebuilt stretch's meetings are
   /// scheduled, the fronts emitted merge where cheap, and light pieces take theirs back.
+  /// Links the emitted fronts in: the C− fronts after the left state's node, the C+ fronts
+  /// after the node that holds the right star state (returned; kNone at a right end or where a
+  /// droplet holds it); bodies in contact that part separate, a crack inside a piece splits it
+  /// (parted_inside; an interface there goes, interface = kNone) and is qualitative if a smooth
+  /// wave's step came in (smooth_in).
+  int link_waves(const Meeting& g, const RiemannSolution& sol, int droplet, double XL, bool smooth_in, int& interface,
+                 bool& parted_inside, double t);
   void settle_and_schedule(const Meeting& g, int interface, bool parted_inside, int droplet, int right_holder,
                            bool parted, double t);
   /// The offsets (Node::offset) of the smooth steps resolve_group has just emitted, from those
