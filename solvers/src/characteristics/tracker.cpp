@@ -262,17 +262,14 @@ Tracker::BoundParts Tracker::error_bound_parts(double t_end) const {
     if (!n.alive || n.kind != NodeKind::front) continue;
     carried_alive += n.carried;
     // A step still on its line stands for its centred fan, which the samples take exactly.
-    if (n.front_kind == FrontKind::rarefaction && n.fan == kNone) {
+    // Every other step of a smooth wave (a fan's, a piston ramp's, what they become in linearly
+    // degenerate bodies and as weak shocks) books the reconstruction's error where it applies,
+    // the staircase's where the samples take the staircase (a step between plateaus, a
+    // superposed one).
+    if ((n.front_kind == FrontKind::rarefaction || n.smooth) && n.fan == kNone)
       error_fans_alive += fan_error(static_cast<int>(id), t_end);
-    }
     // A jump that met a smooth wave is off its path by up to about kink × kink_dt / 2.
     if (n.kink > 0.0) error_fans_alive += 0.5 * n.strength * n.kink * std::min(t_end - n.t0, n.kink_dt);
-    if (n.front_kind != FrontKind::rarefaction && n.smooth && n.fan == kNone) {
-      // Steps of a piston's ramp and what smooth waves become in linearly degenerate bodies
-      // and as weak shocks: the reconstruction's error where it applies, the staircase's where
-      // the samples take the staircase (a step between plateaus, a superposed one).
-      error_fans_alive += fan_error(static_cast<int>(id), t_end, true);
-    }
   }
   for (const LightPiece& lp : light_)
     for (const std::deque<LightFront>* queue : {&lp.plus, &lp.minus})
