@@ -652,12 +652,6 @@ double Tracker::meeting_label(const std::vector<int>& group, int piece, double t
 }
 
 RiemannSolution Tracker::solve_meeting(const std::vector<int>& group, const Meeting& g, const Incoming& in, double t) {
-  const int first = g.first, last = g.last, before = g.before, after = g.after, right_piece = g.right_piece;
-  const int interface = g.interface, contact_left = g.contact_left;
-  const bool left_boundary = g.left_boundary, right_boundary = g.right_boundary;
-  const double x = g.x;
-  const Region& left_region = g.left_region;
-  const Region& right_region = g.right_region;
   RiemannSolution sol;
   // No classical solution: the run stops at t and Tracker::run closes the books there. The
   // errors the fronts taken in carried stay in its bound, and the right state, which the last
@@ -665,41 +659,41 @@ RiemannSolution Tracker::solve_meeting(const std::vector<int>& group, const Meet
   // the group, else on a front of no strength at x.
   const auto require = [&](const Material& limiting) {
     try {
-      require_solved(sol, limiting, t, x, scene_.units);
+      require_solved(sol, limiting, t, g.x, scene_.units);
     } catch (const InadmissibleError&) {
       ledger_.lose(in.carried_in +
                    ledger_.book_fan(in.steps_error[0] + in.steps_error[1] + in.steps_taken[0] + in.steps_taken[1]));
-      if (after != kNone && !nodes_[after].alive) {
+      if (g.after != kNone && !nodes_[g.after].alive) {
         int holder = kNone;
         for (auto id = group.rbegin(); id != group.rend() && holder == kNone; ++id)
           if (nodes_[*id].alive) holder = *id;
         if (holder == kNone) {
-          const double X = meeting_label(group, right_piece, t);
-          holder = new_node(NodeKind::front, right_piece);
+          const double X = meeting_label(group, g.right_piece, t);
+          holder = new_node(NodeKind::front, g.right_piece);
           Node& h = nodes_[holder];
           h.front_kind = FrontKind::contact;
           h.family = 1;
           h.t0 = t;
-          h.x0 = x;
+          h.x0 = g.x;
           h.X0 = X;
           ++live_fronts_;
-          const int next = nodes_[before].next;
-          link(before, holder);
+          const int next = nodes_[g.before].next;
+          link(g.before, holder);
           link(holder, next);
         }
-        nodes_[holder].right = right_region;
+        nodes_[holder].right = g.right_region;
       }
       throw;
     }
   };
-  const Material* mL = left_region.material;
-  const Material* mR = right_region.material;
-  if (left_boundary || right_boundary) {
-    const int end = left_boundary ? first : last;
+  const Material* mL = g.left_region.material;
+  const Material* mR = g.right_region.material;
+  if (g.left_boundary || g.right_boundary) {
+    const int end = g.left_boundary ? g.first : g.last;
     const Node& e = nodes_[end];
-    const Material& m = left_boundary ? *mR : *mL;
-    const State& st = left_boundary ? right_region.state : left_region.state;
-    const Side side = left_boundary ? Side::right : Side::left;
+    const Material& m = g.left_boundary ? *mR : *mL;
+    const State& st = g.left_boundary ? g.right_region.state : g.left_region.state;
+    const Side side = g.left_boundary ? Side::right : Side::left;
     if (e.attach == Attach::boundary && walls_[e.partner].traction) {
       sol = solve_traction_end(m, st, side, walls_[e.partner].pressure);
     } else if (e.attach == Attach::boundary) {
@@ -717,48 +711,42 @@ RiemannSolution Tracker::solve_meeting(const std::vector<int>& group, const Meet
       ++w.version;            // events of the contact are stale,
       schedule_piston(wall);  // but not a piston's next change of speed
       set_attach(end, Attach::free, kNone, t);
-      event(t, "separation", x, {piece_body_name(e.piece)});
+      event(t, "separation", g.x, {piece_body_name(e.piece)});
     }
   } else {
     double min_p;
-    if (contact_left != kNone) {
+    if (g.contact_left != kNone) {
       min_p = std::max({0.0, mL->cavitation_pressure(), mR->cavitation_pressure()});
     } else {
       min_p = std::max(mL->cavitation_pressure(), mR->cavitation_pressure());
     }
-    sol = solve_riemann(*mL, left_region.state, *mR, right_region.state, min_p);
+    sol = solve_riemann(*mL, g.left_region.state, *mR, g.right_region.state, min_p);
     require(sol.status == Status::out_of_range && mR->psi_max() < mL->psi_max() ? *mR : *mL);
-    const int holder = interface != kNone ? interface : contact_left;
-    if (holder != kNone && !sol.parted) hold_back_weak_wave(sol, left_region, right_region, holder, min_p, t);
+    const int holder = g.interface != kNone ? g.interface : g.contact_left;
+    if (holder != kNone && !sol.parted) hold_back_weak_wave(sol, g.left_region, g.right_region, holder, min_p, t);
   }
 
   return sol;
 }
 
 int Tracker::keep_droplet(const Meeting& g, RiemannSolution& sol, double XL, double t) {
-  const int left_piece = g.left_piece, right_piece = g.right_piece, before = g.before;
-  const bool left_boundary = g.left_boundary, right_boundary = g.right_boundary;
-  const int contact_left = g.contact_left, interface = g.interface;
-  const double x = g.x;
-  const Region& left_region = g.left_region;
-  const Region& right_region = g.right_region;
-  const Material* mL = left_region.material;
-  const Material* mR = right_region.material;
+  const Material* mL = g.left_region.material;
+  const Material* mR = g.right_region.material;
   // A crack this close to a free end would leave a droplet: the droplet stays with the
   // rest of the piece (see absorb_droplet), and only the rest's wave is emitted.
   int droplet = 0;
-  if (sol.parted && !left_boundary && !right_boundary && contact_left == kNone && interface == kNone &&
-      left_piece == right_piece && mL == mR) {
-    steer_droplets(pieces_[left_piece].body);
-    droplet = droplet_side(left_piece, XL, t);
+  if (sol.parted && !g.left_boundary && !g.right_boundary && g.contact_left == kNone && g.interface == kNone &&
+      g.left_piece == g.right_piece && mL == mR) {
+    steer_droplets(pieces_[g.left_piece].body);
+    droplet = droplet_side(g.left_piece, XL, t);
     if (droplet != 0) {
       const State& kept = droplet < 0 ? sol.right : sol.left;  // the rest's released state
-      const int end = droplet < 0 ? pieces_[left_piece].left_end : pieces_[left_piece].right_end;
-      if (!room_for_end(left_piece, droplet, x + droplet * droplet_lab_length(end, XL, kept, t), t)) droplet = 0;
+      const int end = droplet < 0 ? pieces_[g.left_piece].left_end : pieces_[g.left_piece].right_end;
+      if (!room_for_end(g.left_piece, droplet, g.x + droplet * droplet_lab_length(end, XL, kept, t), t)) droplet = 0;
     }
     if (droplet != 0) {
       const State& kept = droplet < 0 ? sol.right : sol.left;
-      absorb_droplet(left_piece, droplet, before, XL, x, droplet < 0 ? left_region : right_region, kept, t);
+      absorb_droplet(g.left_piece, droplet, g.before, XL, g.x, droplet < 0 ? g.left_region : g.right_region, kept, t);
       (droplet < 0 ? sol.left : sol.right) = kept;
       sol.parted = false;
     }
@@ -769,18 +757,12 @@ int Tracker::keep_droplet(const Meeting& g, RiemannSolution& sol, double XL, dou
 
 void Tracker::emit_waves(const Meeting& g, const RiemannSolution& sol, int droplet, double XL, double XR, Incoming& in,
                          double t) {
-  const int first = g.first, last = g.last, left_piece = g.left_piece, right_piece = g.right_piece;
-  const bool left_boundary = g.left_boundary, right_boundary = g.right_boundary;
-  const int contact_left = g.contact_left;
-  const double x = g.x;
-  const Region& left_region = g.left_region;
-  const Region& right_region = g.right_region;
-  const Material* mL = left_region.material;
-  const Material* mR = right_region.material;
+  const Material* mL = g.left_region.material;
+  const Material* mR = g.right_region.material;
   // Emit the waves. Each is smooth as smooth_in says, or, with no front coming in, if a piston
   // ramp's step starts it (handle sets emit_smooth_ for it); a crack inside a piece makes
   // jumps (a body leaving a wall or another body reflects a smooth wave as a free end does).
-  const bool crack = sol.parted && !left_boundary && !right_boundary && contact_left == kNone;
+  const bool crack = sol.parted && !g.left_boundary && !g.right_boundary && g.contact_left == kNone;
   bool smooth_out[2];
   for (int f = 0; f < 2; ++f) {
     smooth_out[f] = !crack && (in.fronts_in > 0 ? in.smooth_in.out(f) : emit_smooth_);
@@ -796,15 +778,15 @@ void Tracker::emit_waves(const Meeting& g, const RiemannSolution& sol, int dropl
   WaveStates& wr = wave_right_;
   wl.states.clear();
   wr.states.clear();
-  if (!left_boundary && droplet >= 0) {
-    wave(*mL, left_region.state, sol.left, -1, !in.smooth_in.any_smooth, wl);
+  if (!g.left_boundary && droplet >= 0) {
+    wave(*mL, g.left_region.state, sol.left, -1, !in.smooth_in.any_smooth, wl);
     emit_smooth_ = smooth_out[0];
-    emit_fronts(*mL, wl, -1, left_piece, t, XL, x, emitted_left_);
+    emit_fronts(*mL, wl, -1, g.left_piece, t, XL, g.x, emitted_left_);
   }
-  if (!right_boundary && droplet <= 0) {
-    wave(*mR, right_region.state, sol.right, +1, !in.smooth_in.any_smooth, wr);
+  if (!g.right_boundary && droplet <= 0) {
+    wave(*mR, g.right_region.state, sol.right, +1, !in.smooth_in.any_smooth, wr);
     emit_smooth_ = smooth_out[1];
-    emit_fronts(*mR, wr, +1, right_piece, t, XR, x, emitted_right_);
+    emit_fronts(*mR, wr, +1, g.right_piece, t, XR, g.x, emitted_right_);
     // Emitted from the outer state inwards; in space the C+ fan's head (next to the
     // right state) is its rightmost front.
     std::reverse(emitted_right_.begin(), emitted_right_.end());
@@ -814,7 +796,7 @@ void Tracker::emit_waves(const Meeting& g, const RiemannSolution& sol, int dropl
     // What a smooth wave's step becomes is a step of that wave, not a centred fan of its own.
     for (int id : emitted_left_) leave_fan(nodes_[id]);
     for (int id : emitted_right_) leave_fan(nodes_[id]);
-    set_offsets(first, last, left_boundary, right_boundary, in.offset_in, in.count_in, t);
+    set_offsets(g.first, g.last, g.left_boundary, g.right_boundary, in.offset_in, in.count_in, t);
   }
 
   for (int f = 0; f < 2; ++f) {
@@ -837,9 +819,6 @@ void Tracker::emit_waves(const Meeting& g, const RiemannSolution& sol, int dropl
 
 void Tracker::settle_and_schedule(const Meeting& g, int interface, bool parted_inside, int droplet, int right_holder,
                                   bool parted, double t) {
-  const int first = g.first, last = g.last, before = g.before, left_piece = g.left_piece, right_piece = g.right_piece;
-  const bool left_boundary = g.left_boundary, right_boundary = g.right_boundary;
-  const int contact_left = g.contact_left, contact_right = g.contact_right;
   // Structural nodes move with the material next to them; an end whose lab speed
   // changes may now close (or open) a gap.
   touched_.clear();
@@ -856,19 +835,19 @@ void Tracker::settle_and_schedule(const Meeting& g, int interface, bool parted_i
   };
   const int new_piece = parted_inside ? static_cast<int>(pieces_.size()) - 1 : kNone;
   settle(interface);
-  if (left_boundary) settle(first);
-  if (right_boundary) settle(last);
-  settle(contact_left);
-  settle(contact_right);
+  if (g.left_boundary) settle(g.first);
+  if (g.right_boundary) settle(g.last);
+  settle(g.contact_left);
+  settle(g.contact_right);
   if (parted_inside) {
-    settle(pieces_[left_piece].right_end);
+    settle(pieces_[g.left_piece].right_end);
     settle(pieces_[new_piece].left_end);
   }
-  if (droplet < 0) settle(pieces_[left_piece].left_end);
-  if (droplet > 0) settle(pieces_[left_piece].right_end);
+  if (droplet < 0) settle(pieces_[g.left_piece].left_end);
+  if (droplet > 0) settle(pieces_[g.left_piece].right_end);
 
   // New meetings: each node of the rebuilt stretch with its right neighbour.
-  touched_.push_back(left_boundary ? first : droplet < 0 ? pieces_[left_piece].left_end : before);
+  touched_.push_back(g.left_boundary ? g.first : droplet < 0 ? pieces_[g.left_piece].left_end : g.before);
   touched_.insert(touched_.end(), emitted_left_.begin(), emitted_left_.end());
   if (right_holder != kNone) touched_.push_back(right_holder);
   touched_.insert(touched_.end(), emitted_right_.begin(), emitted_right_.end());
@@ -881,23 +860,18 @@ void Tracker::settle_and_schedule(const Meeting& g, int interface, bool parted_i
   for (int id : emitted_left_) merge_nearby(id, t);
   for (int id : emitted_right_) merge_nearby(id, t);
   if (ends_moved || parted || droplet != 0)
-    for (int p : {left_piece, right_piece, new_piece})
+    for (int p : {g.left_piece, g.right_piece, new_piece})
       if (p != kNone) schedule_gaps_around(p);
   // Light pieces take what was emitted into them off the node list, and their next arrivals
   // follow their ends.
-  if (is_light(left_piece)) absorb_light(left_piece, t);
-  if (right_piece != left_piece && is_light(right_piece)) absorb_light(right_piece, t);
+  if (is_light(g.left_piece)) absorb_light(g.left_piece, t);
+  if (g.right_piece != g.left_piece && is_light(g.right_piece)) absorb_light(g.right_piece, t);
 }
 
 int Tracker::link_waves(const Meeting& g, const RiemannSolution& sol, int droplet, double XL, bool smooth_in,
                         int& interface, bool& parted_inside, double t) {
-  const int first = g.first, before = g.before, left_piece = g.left_piece, right_piece = g.right_piece;
-  const bool left_boundary = g.left_boundary, right_boundary = g.right_boundary;
-  const int contact_left = g.contact_left, contact_right = g.contact_right;
-  const double x = g.x;
-  const Region& right_region = g.right_region;
   const Material* mL = g.left_region.material;
-  const Material* mR = right_region.material;
+  const Material* mR = g.right_region.material;
   WaveStates& wl = wave_left_;
   WaveStates& wr = wave_right_;
 
@@ -909,16 +883,16 @@ int Tracker::link_waves(const Meeting& g, const RiemannSolution& sol, int drople
     return Region{mR, wr.states[m - k - 1]};
   };
 
-  parted_inside = !left_boundary && !right_boundary && sol.parted && contact_left == kNone;
-  if (!left_boundary && !right_boundary && sol.parted && contact_left != kNone) {
+  parted_inside = !g.left_boundary && !g.right_boundary && sol.parted && g.contact_left == kNone;
+  if (!g.left_boundary && !g.right_boundary && sol.parted && g.contact_left != kNone) {
     // Two bodies in contact separate.
-    set_attach(contact_left, Attach::free, kNone, t);
-    set_attach(contact_right, Attach::free, kNone, t);
-    event(t, "separation", x, {piece_body_name(left_piece), piece_body_name(right_piece)});
+    set_attach(g.contact_left, Attach::free, kNone, t);
+    set_attach(g.contact_right, Attach::free, kNone, t);
+    event(t, "separation", g.x, {piece_body_name(g.left_piece), piece_body_name(g.right_piece)});
   }
 
   // Left part: before → C− fronts → (interface | contact_left | new right end | first C+ front ...)
-  int cursor = left_boundary ? first : droplet < 0 ? pieces_[left_piece].left_end : before;
+  int cursor = g.left_boundary ? g.first : droplet < 0 ? pieces_[g.left_piece].left_end : g.before;
   for (std::size_t k = 0; k < emitted_left_.size(); ++k) {
     const int id = emitted_left_[k];
     nodes_[id].right = states_of_left(k);
@@ -929,14 +903,14 @@ int Tracker::link_waves(const Meeting& g, const RiemannSolution& sol, int drople
   }
   // Right part, inserted after the node that holds the right star region.
   int right_holder;  // node whose right region becomes the right star state
-  if (left_boundary) {
-    right_holder = first;
-  } else if (right_boundary) {
+  if (g.left_boundary) {
+    right_holder = g.first;
+  } else if (g.right_boundary) {
     right_holder = kNone;
   } else if (interface != kNone) {
     right_holder = interface;
-  } else if (contact_right != kNone) {
-    right_holder = contact_right;
+  } else if (g.contact_right != kNone) {
+    right_holder = g.contact_right;
   } else if (droplet > 0) {
     right_holder = kNone;  // the last C− front holds the droplet's state, up to the right end
   } else {
@@ -952,19 +926,19 @@ int Tracker::link_waves(const Meeting& g, const RiemannSolution& sol, int drople
       kill_node(interface, t);
       interface = kNone;
     }
-    const Region right_first = emitted_right_.empty() ? right_region : Region{mR, wr.states.back()};
-    split_piece(left_of_crack, right_of_crack, sol.left, sol.right, Region{}, right_first, t, XL, x);
+    const Region right_first = emitted_right_.empty() ? g.right_region : Region{mR, wr.states.back()};
+    split_piece(left_of_crack, right_of_crack, sol.left, sol.right, Region{}, right_first, t, XL, g.x);
     right_holder = pieces_.back().left_end;
-    event(t, "cavitation", x, {piece_body_name(left_piece)});
+    event(t, "cavitation", g.x, {piece_body_name(g.left_piece)});
     if (smooth_in) {
       // A smooth wave's step decided this crack: a finer step would part the body elsewhere.
-      if (qualitative_cracks_++ == 0) qualitative_body_ = pieces_[left_piece].body;
+      if (qualitative_cracks_++ == 0) qualitative_body_ = pieces_[g.left_piece].body;
       qualitative_since_ = std::min(qualitative_since_, t);
     }
   }
   if (right_holder != kNone) {
     const std::size_t m = emitted_right_.size();
-    nodes_[right_holder].right = m > 0 ? Region{mR, wr.states.back()} : right_region;
+    nodes_[right_holder].right = m > 0 ? Region{mR, wr.states.back()} : g.right_region;
     int c = right_holder;
     for (std::size_t k = 0; k < m; ++k) {
       const int id = emitted_right_[k];
