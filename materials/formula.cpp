@@ -38,13 +38,13 @@
 #include <memory>
 #include <mutex>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "rigidity/number_text.hpp"
 #include "rigidity/numeric_material.hpp"
 #include "rigidity/parameters.hpp"
 #include "rigidity/registry.hpp"
@@ -65,13 +65,6 @@ constexpr double kNaturalPressureTolerance = 1e-8;
 constexpr std::string_view kStretchName = "s";
 constexpr std::string_view kRestDensityName = "rest_density";
 constexpr std::string_view kLightSpeedName = "c";
-
-std::string text_of(double v) {
-  std::ostringstream os;
-  os.precision(12);
-  os << v;
-  return os.str();
-}
 
 /// An expression of s, parsed once; evaluated under a lock (a muparser Parser holds its
 /// variables and stack in itself).
@@ -245,7 +238,7 @@ Law read_law(const ParameterValues& values) {
 void check_law(const NumericMaterial& material, const Expression& expression, bool is_pressure, StretchRange window) {
   const double rho = material.rest_density();
   const auto fail = [&](double s, const std::string& what) {
-    throw ParameterError(expression.key(), expression.quoted() + ": at s = " + text_of(s) + ": " + what);
+    throw ParameterError(expression.key(), expression.quoted() + ": at s = " + twelve_digits(s) + ": " + what);
   };
   std::vector<double> logs;
   for (int k = 0; k <= kChecks; ++k)
@@ -256,34 +249,38 @@ void check_law(const NumericMaterial& material, const Expression& expression, bo
   for (const double s : stretches) {
     const double value = expression(s);
     if (!std::isfinite(value))
-      fail(s, "the expression gives no finite number (" + text_of(value) + "); narrow [min_stretch, max_stretch]");
+      fail(s,
+           "the expression gives no finite number (" + twelve_digits(value) + "); narrow [min_stretch, max_stretch]");
   }
   if (is_pressure) {
     const double p1 = expression(1.0);
     if (!(std::abs(p1) <= kNaturalStateTolerance * rho))
-      fail(1.0, "p = " + text_of(p1) + " (in units of rest_density c^2); the natural state s = 1 is unstressed, p = 0");
+      fail(1.0, "p = " + twelve_digits(p1) +
+                    " (in units of rest_density c^2); the natural state s = 1 is unstressed, p = 0");
   } else {
     const double w1 = expression(1.0);
     if (!(std::abs(w1 - rho) <= kNaturalStateTolerance * rho))
-      fail(1.0, "W = " + text_of(w1) + " (in units of rest_density c^2 = " + text_of(rho) +
+      fail(1.0, "W = " + twelve_digits(w1) + " (in units of rest_density c^2 = " + twelve_digits(rho) +
                     "); W(1) is the rest energy, rest_density c^2");
     const double p1 = material.pressure(Stretch::natural());
     if (!(std::abs(p1) <= kNaturalPressureTolerance * rho))
-      fail(1.0, "p = -dW/ds = " + text_of(p1) + " (in units of rest_density c^2); the natural state is unstressed");
+      fail(1.0,
+           "p = -dW/ds = " + twelve_digits(p1) + " (in units of rest_density c^2); the natural state is unstressed");
   }
   for (const double value : stretches) {
     const Stretch s = Stretch::from_value(value);
     const double enthalpy = material.enthalpy_density(s);
     const double stiffness = material.stiffness(s);
-    if (!(enthalpy > 0.0)) fail(value, "e + p = " + text_of(enthalpy) + " is not positive");
+    if (!(enthalpy > 0.0)) fail(value, "e + p = " + twelve_digits(enthalpy) + " is not positive");
     if (!(stiffness > 0.0))
-      fail(value, std::string("not hyperbolic: ") +
-                      (is_pressure ? "dp/ds = " + text_of(-stiffness) + " is not negative (p must fall as s grows)"
-                                   : "W'' = " + text_of(stiffness) + " is not positive (W must be convex)"));
+      fail(value,
+           std::string("not hyperbolic: ") +
+               (is_pressure ? "dp/ds = " + twelve_digits(-stiffness) + " is not negative (p must fall as s grows)"
+                            : "W'' = " + twelve_digits(stiffness) + " is not positive (W must be convex)"));
     // c_s² = s W''/(e + p) (docs/physics.md), taken as c where above it by less than the tables' accuracy:
     // the material's own sound_speed, which the solvers and the registry's check read.
     if (!(material.sound_speed(s) <= 1.0))
-      fail(value, "acausal: the sound speed c_s = " + text_of(std::sqrt(value * stiffness / enthalpy)) +
+      fail(value, "acausal: the sound speed c_s = " + twelve_digits(std::sqrt(value * stiffness / enthalpy)) +
                       " c exceeds c; narrow [min_stretch, max_stretch] or change the law");
   }
 }

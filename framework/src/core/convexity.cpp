@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <sstream>
 #include <vector>
+
+#include "rigidity/number_text.hpp"
 
 namespace rigidity {
 namespace {
@@ -24,14 +25,6 @@ constexpr double kEdge = 0.02;
 constexpr int kSamples = 400;
 constexpr int kBisections = 60;
 
-/// Twelve digits: where and what g is, as a message says it.
-std::string text_of(double v) {
-  std::ostringstream os;
-  os.precision(12);
-  os << v;
-  return os.str();
-}
-
 std::string behaviour(double g) {
   return g < 0.0 ? "compressions are shocks and expansions fans" : "expansions are shocks and compressions fans";
 }
@@ -48,10 +41,11 @@ double genuine_nonlinearity(const Material& material, double log_s, StretchRange
 }
 
 std::string Inflection::describe() const {
-  return "at s = " + text_of(stretch) +
+  return "at s = " + twelve_digits(stretch) +
          ": not convex: the genuine nonlinearity g = dc_s/d(ln s) - c_s (1 - c_s^2) changes sign there (g = " +
-         text_of(g_before) + " at s = " + text_of(s_before) + ", where " + behaviour(g_before) +
-         "; g = " + text_of(g_after) + " at s = " + text_of(s_after) + ", where " + behaviour(g_after) + ")";
+         twelve_digits(g_before) + " at s = " + twelve_digits(s_before) + ", where " + behaviour(g_before) +
+         "; g = " + twelve_digits(g_after) + " at s = " + twelve_digits(s_after) + ", where " + behaviour(g_after) +
+         ")";
 }
 
 std::optional<Inflection> find_inflection(const Material& material, StretchRange window) {

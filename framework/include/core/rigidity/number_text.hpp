@@ -4,6 +4,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "rigidity/units.hpp"
@@ -16,6 +17,15 @@ namespace rigidity {
   std::array<char, 32> digits{};
   const auto result = std::to_chars(digits.data(), digits.data() + digits.size(), value);
   return std::string(digits.data(), result.ptr);
+}
+
+/// Twelve significant digits: where a message names a stretch or a law's value that was found
+/// by a search or a table, whose last digits say nothing.
+[[nodiscard]] inline std::string twelve_digits(double value) {
+  std::ostringstream os;
+  os.precision(12);
+  os << value;
+  return os.str();
 }
 
 /// A value given in natural units, written in the scene's units with its unit ("17.6 L/c",
