@@ -198,5 +198,47 @@ outputs: {snapshots: [{times: [12.0], quantities: [x], samples: 3}], fronts: tru
   }
 }
 
+// A `rigid` bar between a bonded wall and two gas bars: the gas bars' rarefactions enter it as
+// smooth waves (steps of about 3.3e-3 in J− = φ − Ψ at tolerance 1e-5), and by t = 10 weak
+// steps of the same family and the opposite sign (reflections, ~1e-6) ride among them. The
+// samples reconstruct the wave past those, as on a node piece: between neighbouring samples
+// (2.6e-4 apart in the labels) J− changes by the wave's slope times the spacing or by a true
+// jump (> 0.02 here), and by half a step where a wave begins or ends; never by a whole step,
+// the staircase's mark (nine such changes where the riding steps stopped the line).
+TEST(LightPieces, ASmoothWaveIsReconstructedPastTheWeakStepsRidingOnIt) {
+  const std::string yaml = R"(
+name: wall_rigid_gas_gas
+materials:
+  m0: {model: rigid, rest_density: 0.989}
+  m1: {model: constant_sound_speed, rest_density: 2.43, sound_speed: 0.221}
+  m2: {model: constant_sound_speed, rest_density: 1.468, sound_speed: 0.202}
+bodies:
+  - {name: b0, material: m0, position: 0.0, segments: [{length: 0.5286, velocity: 0.2617, stretch: 0.8592}, {length: 0.5286, velocity: 0.1741, stretch: 1.0124}]}
+  - {name: b1, material: m1, position: 1.3363, segments: [{length: 0.2227, velocity: -0.0515, stretch: 1.1318}, {length: 0.2227, velocity: -0.0726, stretch: 0.9537}, {length: 0.2227, velocity: -0.0602, stretch: 1.0783}]}
+  - {name: b2, material: m2, position: 2.3834, length: 1.0075, velocity: 0.4163}
+boundaries: {left: {type: wall, bonded: true}, right: {type: free}}
+solver: {method: characteristics, tolerance: 1e-5}
+time: {end: 10.0}
+outputs: {snapshots: [{times: [10.0], quantities: [v, s], samples: 4001}]}
+)";
+  const RunResult r = solve(load_scene_string(yaml, "<test>"));
+  ASSERT_EQ(r.status, "ok");
+  std::map<double, std::pair<double, double>> bar;  // X -> (v, s) of the rigid bar
+  for (const SnapshotSample& sample : r.snapshots)
+    if (sample.body == 0) (sample.quantity == Quantity::v ? bar[sample.X].first : bar[sample.X].second) = sample.value;
+  ASSERT_GT(bar.size(), 1000u);
+  int whole_steps = 0, ramp_changes = 0;
+  double previous = std::nan("");
+  for (const auto& [X, vs] : bar) {
+    const double j_minus = std::atanh(vs.first) + std::log(vs.second);  // Ψ = −ln s for the rigid law
+    const double change = std::abs(j_minus - previous);
+    if (change > 2.5e-3 && change < 0.01) ++whole_steps;
+    if (change > 1e-5 && change < 1e-3) ++ramp_changes;
+    previous = j_minus;
+  }
+  EXPECT_EQ(whole_steps, 0);
+  EXPECT_GT(ramp_changes, 800) << "the bar holds a smooth wave, sampled along its slope";
+}
+
 }  // namespace
 }  // namespace rigidity

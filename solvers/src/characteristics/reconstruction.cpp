@@ -233,29 +233,35 @@ bool Tracker::light_reconstruct(int piece, double x, double t, State& state) con
   bool changed = false;
   for (int family : {-1, +1}) {
     const std::deque<LightFront>& q = family > 0 ? lp.plus : lp.minus;
-    const auto at = [&](std::size_t i) { return q[i].x_at(t, family); };
-    // C+ fronts stand right to left in their queue, C− fronts left to right: the four steps
-    // around x, left to right (kNone where there is none).
-    const std::size_t n = q.size();
-    std::size_t k = 0;  // C+: fronts right of x; C−: fronts at or left of x
-    while (k < n && (family > 0 ? at(k) > x : at(k) <= x)) ++k;
-    const auto index = [&](long offset) -> long {  // offset −2, −1, 0, +1 from the strip, left to right
-      const long i = family > 0 ? static_cast<long>(k) - 1 - offset : static_cast<long>(k) + offset;
-      return i >= 0 && i < static_cast<long>(n) ? i : kNone;
+    const auto at = [&](long i) { return q[static_cast<std::size_t>(i)].x_at(t, family); };
+    // Each front's value on its left and on its right: a C+ front runs into j_ahead on its right.
+    const auto left_of = [&](long i) { return family > 0 ? q[i].j_behind : q[i].j_ahead; };
+    const auto right_of = [&](long i) { return family > 0 ? q[i].j_ahead : q[i].j_behind; };
+    // As on a node piece (strip_edge): a weak smooth step riding on the wave is a jump on top
+    // of its line, not one of the steps the line is drawn through.
+    const auto riding = [&](long i) {
+      return q[i].smooth && std::abs(right_of(i) - left_of(i)) < kSuperposed * fan_step_;
     };
-    const long a = family > 0 ? index(1) : index(-1), b = family > 0 ? index(0) : index(0);
+    // C+ fronts stand right to left in their queue, C− fronts left to right.
+    const long n = static_cast<long>(q.size()), leftwards = family > 0 ? 1 : -1;
+    long k = 0;  // C+: fronts right of x; C−: fronts at or left of x
+    while (k < n && (family > 0 ? at(k) > x : at(k) <= x)) ++k;
+    // The nearest front from index i on, walking by `by`, that is not riding (kNone: none).
+    const auto edge = [&](long i, long by) {
+      while (i >= 0 && i < n && riding(i)) i += by;
+      return i >= 0 && i < n ? i : static_cast<long>(kNone);
+    };
+    const long a = edge(family > 0 ? k : k - 1, leftwards), b = edge(family > 0 ? k - 1 : k, -leftwards);
     if (a == kNone || b == kNone || !q[a].smooth || !q[b].smooth) continue;
-    const long a2 = family > 0 ? index(2) : index(-2), b2 = family > 0 ? index(-1) : index(1);
+    const long a2 = edge(a + leftwards, leftwards), b2 = edge(b - leftwards, -leftwards);
     const double Xa = at(a), Xb = at(b), width = Xb - Xa;
     const double left = a2 != kNone && q[a2].smooth ? Xa - at(a2) : kInf;
     const double right = b2 != kNone && q[b2].smooth ? at(b2) - Xb : kInf;
-    // Each front's value on its left and on its right: a C+ front runs into j_ahead on its right.
-    const auto left_of = [&](const LightFront& f) { return family > 0 ? f.j_behind : f.j_ahead; };
-    const auto right_of = [&](const LightFront& f) { return family > 0 ? f.j_ahead : f.j_behind; };
     const Line line =
-        line_through(right_of(q[a]) - left_of(q[a]), right_of(q[b]) - left_of(q[b]), width, left, right, kPlateauRatio);
+        line_through(right_of(a) - left_of(a), right_of(b) - left_of(b), width, left, right, kPlateauRatio);
     if (std::isnan(line.slope)) continue;
-    j[family > 0 ? 1 : 0] = right_of(q[a]) + line.at_a + line.slope * (x - Xa);
+    // The region's own value carries the riding steps between a and x as the jumps they are.
+    j[family > 0 ? 1 : 0] += line.at_a + line.slope * (x - Xa);
     changed = true;
   }
   if (!changed) return false;

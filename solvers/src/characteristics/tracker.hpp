@@ -269,7 +269,7 @@ struct LightFront {
   /// places the fronts of the other family that last met it, fixed for its life.
   double behind_speed = 0.0;
   double carried = 0.0;  ///< the L1 error its wave carries (Node::carried)
-  bool smooth = false;   ///< a step of a smooth wave (Node::smooth), sampled as the staircase it is here
+  bool smooth = false;   ///< a step of a smooth wave (Node::smooth): samples reconstruct its wave (light_reconstruct)
   [[nodiscard]] double x_at(double t, int family) const { return intercept + family * t; }
 };
 
