@@ -84,7 +84,7 @@ constexpr Command kCommands[] = {
     {"compare",
      "rigidity compare [--scene FILE] [--materials a,b] [--out DIR] [--speeds v,...] [--impact-speed v] "
      "[--param model.name=x ...]",
-     "compare the materials: stress-strain laws, sound speeds and wall impacts",
+     "compare the materials: stress-strain laws, sound speeds, wall impacts and Hugoniots",
      "For every registered material (or those named by --materials) tabulates the\n"
      "stress-strain law p(s) in compression and traction, the sound speed c_s(s), and the\n"
      "exact wall impact of an unstrained bar at each speed v (exact Riemann solver): the\n"
@@ -96,7 +96,11 @@ constexpr Command kCommands[] = {
      "                     (empty cells: no classical solution, or no such speed)\n"
      "  stress_strain.csv  material,s,p,e,cs on a grid of s (admissible stretches only)\n"
      "  impact.csv         material,v,s,p,front_speed (speeds below the crush speed only)\n"
-     "  stress_strain.png, sound_speed.png, impact.png and the gnuplot scripts (.gp)\n"
+     "  hugoniot.csv       material,s,p,v_shock,v_smooth: a compression from rest to s, the\n"
+     "                     speed of the material behind a shock (the Hugoniot) and behind a\n"
+     "                     smooth wave (the isentrope) to it\n"
+     "  stress_strain.png, sound_speed.png, impact.png, hugoniot.png and the gnuplot\n"
+     "                     scripts (.gp)\n"
      "that draw them, and prints a markdown summary. Without gnuplot the tables and\n"
      "scripts are written and a warning says the plots were not drawn.\n"
      "A parameter that is required and has no default takes a representative value: the\n"

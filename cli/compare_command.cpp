@@ -341,6 +341,13 @@ struct CurvePoint {
   double s = 1.0, p = 0.0, e = 0.0, cs = 0.0;
 };
 
+/// A compression from the unstrained bar at rest to stretch s (pressure p): the speed the
+/// material behind takes through a shock (its Hugoniot) and through a smooth compression wave
+/// (its isentrope).
+struct WavePoint {
+  double s = 1.0, p = 0.0, v_shock = 0.0, v_smooth = 0.0;
+};
+
 /// Everything compare reports about one material.
 struct Comparison {
   const Candidate* candidate = nullptr;
@@ -352,6 +359,7 @@ struct Comparison {
   std::optional<Impact> impact;       ///< at the --impact-speed; none if crushed
   std::optional<double> crush_speed;  ///< none if no impact speed crushes it
   std::vector<CurvePoint> curve;      ///< admissible stretches of the grid only
+  std::vector<WavePoint> waves;       ///< the compressions of the grid (s < 1) a shock reaches
   std::vector<Impact> impacts;        ///< the speeds with a classical solution only
   std::vector<std::string> warnings;
 };
@@ -394,6 +402,20 @@ Comparison compare(const Candidate& c, double impact_speed, const std::vector<do
     out.warnings.push_back(c.name + ": " + std::to_string(skipped) +
                            " admissible stretches of the grid left out: p, e or c_s failed there");
 
+  // From rest to each compression of the grid: through a shock, the jump conditions (the
+  // Hugoniot); through a smooth wave, J− = φ − Ψ is constant across a C+ wave (the isentrope):
+  // φ = Ψ(s) − Ψ(1). The two agree wherever every wave is a jump (linearly degenerate laws).
+  const State rest{0.0, Stretch::natural()};
+  const double psi_rest = m.riemann_psi(Stretch::natural());
+  for (const CurvePoint& q : out.curve) {
+    if (q.s >= 1.0) continue;
+    const Stretch s = Stretch::from_value(q.s);
+    const Solved<double> shock = hugoniot_rapidity(m, rest, s, +1);
+    if (!shock.ok() || !std::isfinite(shock.value)) continue;
+    out.waves.push_back(
+        WavePoint{q.s, q.p, std::abs(std::tanh(shock.value)), std::tanh(std::abs(m.riemann_psi(s) - psi_rest))});
+  }
+
   const auto impact_at = [&](double v) -> std::optional<Impact> {
     const ImpactOutcome outcome = wall_impact(m, v);
     if (outcome.status == Status::ok) return outcome.impact;
@@ -433,6 +455,11 @@ Comparison in_units(Comparison r, UnitSystem units) {
     p(q.e);
     v(q.cs);
   }
+  for (WavePoint& w : r.waves) {
+    p(w.p);
+    v(w.v_shock);
+    v(w.v_smooth);
+  }
   return r;
 }
 
@@ -470,6 +497,16 @@ std::string stress_strain_csv(const std::vector<Comparison>& rows) {
     for (const CurvePoint& q : r.curve)
       out += csv_field(r.candidate->name) + "," + exact(q.s) + "," + exact(q.p) + "," + exact(q.e) + "," + exact(q.cs) +
              "\n";
+  return out;
+}
+
+/// hugoniot.csv: the compressions from rest, by a shock and by a smooth wave.
+std::string hugoniot_csv(const std::vector<Comparison>& rows) {
+  std::string out = "material,s,p,v_shock,v_smooth\n";
+  for (const Comparison& r : rows)
+    for (const WavePoint& w : r.waves)
+      out += csv_field(r.candidate->name) + "," + exact(w.s) + "," + exact(w.p) + "," + exact(w.v_shock) + "," +
+             exact(w.v_smooth) + "\n";
   return out;
 }
 
@@ -641,6 +678,31 @@ std::string impact_chart(const std::vector<Comparison>& rows, UnitSystem units) 
   return out + "unset multiplot\n";
 }
 
+std::string hugoniot_chart(const std::vector<Comparison>& rows, UnitSystem units) {
+  const double c = from_natural(1.0, Dimension::velocity, units);
+  const std::string speed_unit = units == UnitSystem::si ? "m/s" : "c";
+  std::string out = chart_header(
+      "The Hugoniot against the isentrope: the pressure a bar at rest is compressed to, against the speed its "
+      "material takes, through a shock (solid) and through a smooth compression wave (dashed). They coincide for "
+      "laws whose every wave is a jump (linearly degenerate: rigid, hooke, rigid_fluid).",
+      "hugoniot", 1000, 700);
+  out += "set title 'Hugoniot (shock, solid) against isentrope (smooth wave, dashed): compression from rest'\n";
+  out += "set xlabel 'speed of the material behind the wave  [" + speed_unit + "]'\n";
+  out += "set ylabel 'p  [" + std::string(units == UnitSystem::si ? "Pa" : "rho00 c^2") + "]'\n";
+  out += "set xrange [0:" + exact(c) + "]\nset logscale y\nset key top left box opaque\n";
+  std::vector<std::string> elements;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i].waves.empty()) continue;
+    const std::string name = gnuplot_quote(rows[i].candidate->name);
+    const std::string data = gnuplot_quote("hugoniot.csv") + " skip 1 using ";
+    elements.push_back(data + "4:(strcol(1) eq " + name + " ? $3 : NaN) with lines lw 2 lc rgb '" + colour(i) +
+                       "' title " + gnuplot_quote(legend(rows[i])));
+    elements.push_back(data + "5:(strcol(1) eq " + name + " ? $3 : NaN) with lines lw 2 dt (6,5) lc rgb '" + colour(i) +
+                       "' notitle");
+  }
+  return out + plot_lines(elements);
+}
+
 // ---- the summary ------------------------------------------------------------------------------
 
 void print_summary(std::ostream& out, const std::vector<Comparison>& rows, double impact_speed, UnitSystem units,
@@ -740,10 +802,13 @@ int compare_command(std::span<const std::string> args, std::ostream& out) {
   write_file(dir / "materials.csv", materials_csv(rows, impact_v, units));
   write_file(dir / "stress_strain.csv", stress_strain_csv(rows));
   write_file(dir / "impact.csv", impact_csv(rows));
-  std::vector<std::string> files{"materials.csv", "stress_strain.csv", "impact.csv"};
+  write_file(dir / "hugoniot.csv", hugoniot_csv(rows));
+  std::vector<std::string> files{"materials.csv", "stress_strain.csv", "impact.csv", "hugoniot.csv"};
 
   std::vector<std::pair<std::string, std::string>> charts{{"stress_strain", stress_strain_chart(rows, units)},
                                                           {"sound_speed", sound_speed_chart(rows, units)}};
+  if (std::any_of(rows.begin(), rows.end(), [](const Comparison& r) { return !r.waves.empty(); }))
+    charts.emplace_back("hugoniot", hugoniot_chart(rows, units));
   if (std::any_of(rows.begin(), rows.end(), [](const Comparison& r) { return !r.impacts.empty(); })) {
     charts.emplace_back("impact", impact_chart(rows, units));
   } else {

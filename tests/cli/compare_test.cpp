@@ -202,6 +202,50 @@ TEST_F(CliTest, CompareImpactsAreNanFreeAndObeyTheJumpConditions) {
   EXPECT_EQ(rows["hooke"], 49);  // v = 0.01 ... 0.49
 }
 
+// The compressions from rest, through a shock and through a smooth wave, against closed forms
+// written here: for `rigid` every wave is a jump, so the two coincide on the rigid law's
+// isentrope φ = −ln s (v = (1 − s²)/(1 + s²)); for constant_sound_speed (V = 0.5, ρ00 = 1) the
+// isentrope is φ = V |ln s| and the Hugoniot follows from the conservation of particles and
+// momentum across a front at lab speed U into the bar at rest (energy is not conserved: an
+// elastic shock dissipates): U = γ v/(γ − s) and p = w γ² v (U − v), so p γ = s (p + w γ² v²)
+// with w = e + p, e = 1 + p/V²; solved for v by bisection.
+TEST_F(CliTest, CompareHugoniotAndIsentropeMatchTheirClosedForms) {
+  const CliOutcome r = rigidity("compare --materials rigid,constant_sound_speed --out cmp");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const Csv csv = read_csv(dir() / "cmp" / "hugoniot.csv");
+  EXPECT_EQ(csv.header, (std::vector<std::string>{"material", "s", "p", "v_shock", "v_smooth"}));
+  std::map<std::string, int> rows;
+  double widest_gap = 0.0;  // constant_sound_speed: how far the Hugoniot leaves the isentrope
+  for (const auto& row : csv.rows) {
+    const std::string& material = row.at("material");
+    ++rows[material];
+    const double s = number(row, "s"), p = number(row, "p");
+    const double v_shock = number(row, "v_shock"), v_smooth = number(row, "v_smooth");
+    SCOPED_TRACE(material + " at s = " + row.at("s"));
+    ASSERT_TRUE(s > 0.0 && s < 1.0);
+    if (material == "rigid") {
+      const double v = (1.0 - s * s) / (1.0 + s * s);
+      EXPECT_NEAR(v_smooth, v, 1e-12);
+      EXPECT_NEAR(v_shock, v, 1e-12);
+      continue;
+    }
+    constexpr double V = 0.5;
+    EXPECT_NEAR(p, V * V / (1.0 + V * V) * (std::pow(s, -(1.0 + V * V)) - 1.0), 1e-12 * (1.0 + p));
+    EXPECT_NEAR(v_smooth, std::tanh(V * std::abs(std::log(s))), 1e-12);
+    const double w = 1.0 + p / (V * V) + p;
+    double lo = 0.0, hi = 1.0;  // p γ − s (p + w γ² v²) falls from p (1 − s) > 0 as v grows
+    for (int it = 0; it < 200; ++it) {
+      const double v = 0.5 * (lo + hi), g2 = 1.0 / ((1.0 - v) * (1.0 + v));
+      (p * std::sqrt(g2) - s * (p + w * g2 * v * v) > 0.0 ? lo : hi) = v;
+    }
+    EXPECT_NEAR(v_shock, 0.5 * (lo + hi), 1e-10);
+    widest_gap = std::max(widest_gap, std::abs(v_shock - v_smooth));
+  }
+  EXPECT_EQ(rows["rigid"], rows["constant_sound_speed"]);
+  EXPECT_GT(rows["rigid"], 100);
+  EXPECT_GT(widest_gap, 0.01) << "a genuinely nonlinear law's shock is not its smooth wave";
+}
+
 TEST_F(CliTest, CompareStressStrainCurvesStayInsideEachMaterialsRange) {
   const CliOutcome r = rigidity("compare --materials " + kBuiltIns + " --out cmp");
   ASSERT_EQ(r.exit_status, 0) << r.err;
@@ -287,7 +331,7 @@ TEST_F(CliTest, CompareDrawsTheCharts) {
   if (!gnuplot_installed()) GTEST_SKIP() << "gnuplot is not installed";
   const CliOutcome r = rigidity("compare --materials " + kBuiltIns + " --out cmp");
   ASSERT_EQ(r.exit_status, 0) << r.err;
-  for (const char* chart : {"stress_strain", "sound_speed", "impact"}) {
+  for (const char* chart : {"stress_strain", "sound_speed", "impact", "hugoniot"}) {
     EXPECT_TRUE(is_png(dir() / "cmp" / (std::string(chart) + ".png")));
     EXPECT_TRUE(fs::is_regular_file(dir() / "cmp" / (std::string(chart) + ".gp"))) << chart;
   }
@@ -303,7 +347,8 @@ TEST_F(CliTest, CompareWithoutGnuplotWritesTheTablesAndWarns) {
   EXPECT_EQ(r.exit_status, 0) << r.err;
   EXPECT_TRUE(contains(r.err, "gnuplot not found"));
   EXPECT_TRUE(contains(r.out, "gnuplot not found"));
-  for (const char* file : {"materials.csv", "stress_strain.csv", "impact.csv", "stress_strain.gp", "impact.gp"})
+  for (const char* file : {"materials.csv", "stress_strain.csv", "impact.csv", "hugoniot.csv", "stress_strain.gp",
+                           "impact.gp", "hugoniot.gp"})
     EXPECT_TRUE(fs::is_regular_file(dir() / "cmp" / file)) << file;
   EXPECT_FALSE(fs::exists(dir() / "cmp" / "impact.png"));
 }
