@@ -402,18 +402,12 @@ Comparison compare(const Candidate& c, double impact_speed, const std::vector<do
     out.warnings.push_back(c.name + ": " + std::to_string(skipped) +
                            " admissible stretches of the grid left out: p, e or c_s failed there");
 
-  // From rest to each compression of the grid: through a shock, the jump conditions (the
-  // Hugoniot); through a smooth wave, J− = φ − Ψ is constant across a C+ wave (the isentrope):
-  // φ = Ψ(s) − Ψ(1). The two agree wherever every wave is a jump (linearly degenerate laws).
-  const State rest{0.0, Stretch::natural()};
-  const double psi_rest = m.riemann_psi(Stretch::natural());
+  // From rest to each compression of the grid, through a shock and through a smooth wave.
   for (const CurvePoint& q : out.curve) {
     if (q.s >= 1.0) continue;
     const Stretch s = Stretch::from_value(q.s);
-    const Solved<double> shock = hugoniot_rapidity(m, rest, s, +1);
-    if (!shock.ok() || !std::isfinite(shock.value)) continue;
-    out.waves.push_back(
-        WavePoint{q.s, q.p, std::abs(std::tanh(shock.value)), std::tanh(std::abs(m.riemann_psi(s) - psi_rest))});
+    if (const std::optional<double> shock = hugoniot_speed(m, s))
+      out.waves.push_back(WavePoint{q.s, q.p, *shock, isentrope_speed(m, s)});
   }
 
   const auto impact_at = [&](double v) -> std::optional<Impact> {

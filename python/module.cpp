@@ -420,6 +420,18 @@ PYBIND11_MODULE(_rigidity, m) {
              d["front_speed"] = r.impact.front_speed;
              return d;
            })
+      .def("hugoniot",
+           [](const Material& mat, const py::array_t<double, py::array::forcecast>& s) {
+             return over_stretches(mat, s, [&mat](Stretch st) {
+               const std::optional<double> v = st.value() < 1.0 ? rigidity::hugoniot_speed(mat, st) : std::nullopt;
+               return v ? *v : kNaN;
+             });
+           })
+      .def("isentrope",
+           [](const Material& mat, const py::array_t<double, py::array::forcecast>& s) {
+             return over_stretches(
+                 mat, s, [&mat](Stretch st) { return st.value() < 1.0 ? rigidity::isentrope_speed(mat, st) : kNaN; });
+           })
       .def("crush_speed", [](const Material& mat) -> py::object {
         const std::optional<double> v = rigidity::crush_speed(mat);
         if (!v) return py::none();

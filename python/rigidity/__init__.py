@@ -72,6 +72,7 @@ __all__ = [
     "materials",
     "material",
     "riemann",
+    "compare",
     "load_plugin",
     "sweep",
     "Material",
@@ -169,7 +170,9 @@ def materials():
 def material(name, **parameters):
     """A registered material built as a scene builds it (declared defaults, ranges, and a check
     that it is hyperbolic and causal with these parameters). Its p, e, sound_speed, psi,
-    stretch_from_pressure and stretch_from_psi take NumPy arrays (NaN outside its range); its
+    stretch_from_pressure, stretch_from_psi, hugoniot and isentrope (the speed a compression
+    from rest to s < 1 gives the material through a shock and through a smooth wave) take
+    NumPy arrays (NaN outside its range); its
     `spec` is its scene entry, so that a scene dict may hold the Material itself."""
     try:
         made = _rigidity.material(name, parameters)
@@ -259,6 +262,80 @@ def _material_from_function(p=None, W=None, stretch=(0.5, 2.0), rest_density=1.0
 
 
 Material.from_function = staticmethod(_material_from_function)
+
+
+def compare(materials, out=None, stretch=(0.05, 4.0), speeds=None):
+    """Materials side by side, as `rigidity compare` puts them, for any Material the package
+    makes (registered, formula, plugin, from_function); natural units (c = 1). `materials`
+    is a dict {label: Material} or a list (labelled by model). Returns {label: curves}, each
+    a dict of NumPy arrays: s, p, sound_speed over `stretch` (NaN outside the material's
+    range); s_compression, hugoniot, isentrope (the speed a compression from rest to s < 1
+    gives the material through a shock and through a smooth wave); v, impact_p,
+    front_speed (the wall impact at each of `speeds`, default 0.01 ... 0.99, NaN where the
+    bar is crushed); and crush_speed (None if no speed crushes it). With `out`, a directory,
+    draws stress_strain.png, sound_speed.png, impact.png and hugoniot.png there (Matplotlib)."""
+    import numpy
+
+    if not isinstance(materials, dict):
+        materials = {m.model: m for m in materials}
+    if speeds is None:
+        speeds = numpy.linspace(0.01, 0.99, 99)
+    speeds = numpy.asarray(speeds, dtype=float)
+    s = numpy.geomspace(float(stretch[0]), float(stretch[1]), 400)
+    compression = s[s < 1.0]
+    curves = {}
+    for label, m in materials.items():
+        impacts = [m.wall_impact(float(v)) for v in speeds]
+        curves[label] = {
+            "s": s, "p": m.p(s), "sound_speed": m.sound_speed(s),
+            "s_compression": compression, "hugoniot": m.hugoniot(compression),
+            "isentrope": m.isentrope(compression), "v": speeds,
+            "impact_p": numpy.array([i["p"] if i else numpy.nan for i in impacts]),
+            "front_speed": numpy.array([i["front_speed"] if i else numpy.nan for i in impacts]),
+            "crush_speed": m.crush_speed(),
+        }
+    if out is not None:
+        _draw_comparison(curves, _os.fspath(out))
+    return curves
+
+
+def _draw_comparison(curves, out):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    _os.makedirs(out, exist_ok=True)
+    charts = {
+        "stress_strain": ("s", "p", "s = proper length / natural length", "p  [rho00 c^2]", "Stress-strain law p(s)"),
+        "sound_speed": ("s", "sound_speed", "s = proper length / natural length", "c_s  [c]", "Sound speed c_s(s)"),
+        "impact": ("v", "front_speed", "impact speed v  [c]", "front speed relative to the unstrained bar  [c]",
+                   "Wall impact: the front's speed"),
+    }
+    for name, (x, y, xlabel, ylabel, title) in charts.items():
+        fig, ax = plt.subplots(figsize=(8, 5))
+        for k, (label, c) in enumerate(curves.items()):
+            ax.plot(c[x], c[y], lw=2, ls="-" if k % 2 == 0 else "--", label=label)
+            if name == "impact" and c["crush_speed"] is not None:
+                ax.axvline(c["crush_speed"], ls=":", color=ax.lines[-1].get_color())
+        ax.set(xlabel=xlabel, ylabel=ylabel, title=title)
+        if name == "stress_strain":
+            ax.axhline(0.0, color="k", lw=0.8)
+        ax.grid(alpha=0.3)
+        ax.legend()
+        fig.savefig(_os.path.join(out, name + ".png"), dpi=100)
+        plt.close(fig)
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for label, c in curves.items():
+        p = c["p"][: c["s_compression"].size]
+        line = ax.plot(c["hugoniot"], p, lw=2, label=label + ": shock")[0]
+        ax.plot(c["isentrope"], p, lw=2, ls="--", color=line.get_color(), label=label + ": smooth wave")
+    ax.set(xlabel="speed of the material behind the wave  [c]", ylabel="p  [rho00 c^2]", yscale="log",
+           title="Hugoniot against isentrope: compression from rest")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    fig.savefig(_os.path.join(out, "hugoniot.png"), dpi=100)
+    plt.close(fig)
 
 
 def _scene_json(scene):

@@ -163,6 +163,34 @@ def test_wall_impact_and_crush_speed():
     assert rigidity.material("rigid").crush_speed() is None
 
 
+def test_compare_puts_any_materials_side_by_side(tmp_path):
+    # Closed forms written here: the rigid law's shock and smooth wave are one, v = (1 - s^2)/(1 + s^2);
+    # the gas's smooth wave is tanh(V |ln s|), its shock slower for the same pressure (p gamma = s (p + w u^2)).
+    gas = rigidity.Material.from_function(p=lambda s: 0.2 * (s ** -1.25 - 1.0), stretch=(0.1, 4.0))  # V = 0.5
+    curves = rigidity.compare({"rigid": rigidity.material("rigid"), "gas": gas,
+                               "hooke": rigidity.material("hooke", wave_speed=0.5)}, out=tmp_path)
+    rigid = curves["rigid"]
+    s = rigid["s_compression"]
+    assert s.size > 100 and (s < 1.0).all()
+    np.testing.assert_allclose(rigid["hugoniot"], (1 - s * s) / (1 + s * s), rtol=1e-12)
+    np.testing.assert_allclose(rigid["isentrope"], (1 - s * s) / (1 + s * s), rtol=1e-12)
+    np.testing.assert_allclose(rigid["front_speed"], 1.0, rtol=1e-12)  # the seed paper's shock at c
+    g = curves["gas"]
+    inside = g["s_compression"] > 0.1
+    np.testing.assert_allclose(g["isentrope"][inside], np.tanh(0.5 * -np.log(g["s_compression"][inside])),
+                                  rtol=1e-6)  # a table of 801 rows: its Psi to about 1e-7
+    p = g["p"][: g["s_compression"].size][inside]
+    v = g["hugoniot"][inside]
+    gamma = 1 / np.sqrt(1 - v * v)
+    w = 1 + p / 0.25 + p
+    np.testing.assert_allclose(p * gamma, g["s_compression"][inside] * (p + w * gamma ** 2 * v * v), rtol=1e-6)
+    assert (g["hugoniot"][inside] > g["isentrope"][inside]).all()
+    assert curves["hooke"]["crush_speed"] == pytest.approx(0.5, rel=1e-12)
+    assert np.isnan(curves["hooke"]["front_speed"][curves["hooke"]["v"] >= 0.5]).all()
+    for chart in ("stress_strain", "sound_speed", "impact", "hugoniot"):
+        assert (tmp_path / (chart + ".png")).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
 def test_a_solve_releases_the_gil():
     # Two bars of 200 Hooke segments each ringing between bonded walls: long enough to watch
     # another thread run (a lone bar would be a lattice piece, solved in milliseconds).

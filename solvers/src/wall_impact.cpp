@@ -55,4 +55,14 @@ std::optional<double> crush_speed(const Material& material) {
   return std::tanh(hi);
 }
 
+std::optional<double> hugoniot_speed(const Material& material, Stretch s) {
+  const Solved<double> rapidity = hugoniot_rapidity(material, State{0.0, Stretch::natural()}, s, +1);
+  if (!rapidity.ok() || !std::isfinite(rapidity.value)) return std::nullopt;
+  return std::abs(std::tanh(rapidity.value));
+}
+
+double isentrope_speed(const Material& material, Stretch s) {
+  return std::tanh(std::abs(material.riemann_psi(s) - material.riemann_psi(Stretch::natural())));
+}
+
 }  // namespace rigidity

@@ -33,4 +33,11 @@ struct ImpactOutcome {
 /// admissible range), if any.
 [[nodiscard]] std::optional<double> crush_speed(const Material& material);
 
+/// A compression of the unstrained bar at rest to stretch s < 1: the speed the material
+/// behind takes through a shock (the Hugoniot from rest), none where the jump conditions
+/// have no solution; and through a smooth compression wave (the isentrope: J− = φ − Ψ
+/// constant across a C+ wave, φ = Ψ(s) − Ψ(1)). The two agree for linearly degenerate laws.
+[[nodiscard]] std::optional<double> hugoniot_speed(const Material& material, Stretch s);
+[[nodiscard]] double isentrope_speed(const Material& material, Stretch s);
+
 }  // namespace rigidity
