@@ -1043,8 +1043,29 @@ LabelJump label_jump(const State& a, const Hyperbolic& at_a, const State& b) {
   const double r = std::expm1(b.stretch.log() - a.stretch.log());
   jump.stretch_ratio_m1 = r;
   jump.left_stretch = a.stretch.value();
-  jump.scaled_tau = jump.left_stretch *
-                    (r * jump.left.cosh - 2.0 * (jump.left.sinh * half.cosh + jump.left.cosh * half.sinh) * half.sinh);
+  // A difference whose terms are more than 1/kCancels times its size has lost that many bits.
+  constexpr double kCancels = 0.0625;
+  const auto cancels = [](double x, double y) {
+    return std::abs(x + y) < kCancels * std::max(std::abs(x), std::abs(y));
+  };
+  // sinh(φa + h) from the two products where they add; where they cancel (a strong jump
+  // across rest: φa and h of opposite signs), from its own exponential.
+  const double sinh_a_ch = jump.left.sinh * half.cosh, cosh_a_sh = jump.left.cosh * half.sinh;
+  const double sinh_mid =
+      cancels(sinh_a_ch, cosh_a_sh) ? std::sinh(0.5 * (a.rapidity + b.rapidity)) : sinh_a_ch + cosh_a_sh;
+  const double ratio_term = r * jump.left.cosh, rapidity_term = -2.0 * sinh_mid * half.sinh;
+  jump.scaled_tau = jump.left_stretch * (ratio_term + rapidity_term);
+  if (cancels(ratio_term, rapidity_term)) {
+    // A strong jump between sides of very different γ (a bar struck near light speed): the
+    // two terms above are each about γ times [τ] cosh φa cosh φb. Directly, sb cosh φa −
+    // sa cosh φb: its terms are the sides' lab lengths per label, scaled, the larger of them
+    // about the difference itself there. The weak jumps the form above is for keep it.
+    jump.right = hyperbolic(b.rapidity);
+    jump.right_known = true;
+    const double b_term = b.stretch.value() * jump.left.cosh, a_term = jump.left_stretch * jump.right.cosh;
+    if (std::max(b_term, a_term) < jump.left_stretch * std::max(std::abs(ratio_term), std::abs(rapidity_term)))
+      jump.scaled_tau = b_term - a_term;
+  }
   return jump;
 }
 

@@ -24,7 +24,17 @@ FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b,
 
 FrontSpeeds label_jump_speeds(const Material& m, const State& a, const State& b, int family, const LabelJump& jump) {
   const double speed = jump.speed();
-  const double lab = (jump.left.sinh + speed * jump.left_stretch) / jump.left.cosh;
+  double lab = (jump.left.sinh + speed * jump.left_stretch) / jump.left.cosh;
+  // dx/dt = v + m s/γ on either side. Where its two terms cancel on the left (that side
+  // moving near light speed, the front slow in the lab), from the right if they cancel less.
+  const double sinh_part = jump.left.sinh, label_part = speed * jump.left_stretch;
+  if (std::abs(sinh_part + label_part) < 0.0625 * std::max(std::abs(sinh_part), std::abs(label_part))) {
+    const Hyperbolic at_b = jump.right_known ? jump.right : hyperbolic(b.rapidity);
+    const double b_label_part = speed * b.stretch.value();
+    if (std::max(std::abs(at_b.sinh), std::abs(b_label_part)) / at_b.cosh <
+        std::max(std::abs(sinh_part), std::abs(label_part)) / jump.left.cosh)
+      lab = (at_b.sinh + b_label_part) / at_b.cosh;
+  }
   // A coarse step (or a jump held off its curve) can give a speed against its family's
   // direction or beyond light: it then moves at the mean characteristic speed instead.
   if (!std::isfinite(speed) || jump.scaled_tau == 0.0 || !(family * speed > 0.0) || !(std::abs(lab) < 1.0)) {
