@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "rigidity/errors.hpp"
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/solve.hpp"
 
@@ -97,6 +98,25 @@ outputs: {fronts: true}
   // energy, its dissipation to about 1e-11 of it).
   EXPECT_NEAR(r.conservation.momentum_residual(), 0.0, 1e-8);
   EXPECT_NEAR(r.conservation.energy_residual() / r.conservation.energy_initial, 0.0, 1e-10);
+}
+
+// The same bar (V = 0.1) at γ = 1e20: compressed to about 1e-40 of its natural length while the
+// impact happens at t ≈ 1e-20, so its two ends meet to the last digit of time and position. The
+// run stops, naming the body and why, rather than going on with books that do not close.
+TEST(Extremes, ACompressionBeyondDoublePrecisionStopsNamingTheBody) {
+  try {
+    (void)run_yaml(R"(
+name: beyond
+materials: {gas: {model: constant_sound_speed, sound_speed: 0.1}}
+bodies: [{name: slug, material: gas, position: 0.0, length: 1.0, gamma: 1e20}]
+boundaries: {right: {type: wall}}
+time: {end: 1e-3}
+)");
+    ADD_FAILURE() << "no error";
+  } catch (const NumericalError& e) {
+    EXPECT_NE(std::string(e.what()).find("body 'slug'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("double precision"), std::string::npos) << e.what();
+  }
 }
 
 TEST(LongRuns, BarBouncingBetweenWallsForAHundredThousandTimeUnits) {

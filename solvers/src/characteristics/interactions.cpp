@@ -612,7 +612,11 @@ Tracker::Meeting Tracker::meet(const std::vector<int>& group, double t) const {
   const Node& nl = nodes_[g.last];
   g.left_boundary = nf.kind == NodeKind::left_end;
   g.right_boundary = nl.kind == NodeKind::right_end;
-  if (g.left_boundary && g.right_boundary) throw NumericalError("a piece of zero length at t = " + number(t));
+  if (g.left_boundary && g.right_boundary)
+    throw NumericalError("body '" + scene_.bodies[pieces_[nf.piece].body].name + "' at t = " + number(t) +
+                         ": a piece of it is compressed to a lab length that double precision does not resolve "
+                         "against the time and positions there (its two ends meet to the last digit); an impact "
+                         "this strong is beyond what the front tracker can follow");
   // Structural nodes that survive the interaction.
   for (int id : group) {
     const Node& n = nodes_[id];
