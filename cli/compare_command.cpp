@@ -628,9 +628,17 @@ std::string sound_speed_chart(const std::vector<Comparison>& rows, UnitSystem un
   return out + plot_lines(elements);
 }
 
+/// The speed of light in `units` and the unit speeds are printed in.
+struct SpeedAxis {
+  double c = 1.0;
+  std::string unit;
+};
+SpeedAxis speed_axis(UnitSystem units) {
+  return {from_natural(1.0, Dimension::velocity, units), units == UnitSystem::si ? "m/s" : "c"};
+}
+
 std::string impact_chart(const std::vector<Comparison>& rows, UnitSystem units) {
-  const double c = from_natural(1.0, Dimension::velocity, units);
-  const std::string speed_unit = units == UnitSystem::si ? "m/s" : "c";
+  const auto [c, speed_unit] = speed_axis(units);
   std::string out = chart_header(
       "Wall impacts: an unstrained bar at speed v strikes a fixed wall. Pressure and stretch behind the reflected "
       "front and the front's speed relative to the unstrained bar (exact Riemann solver); dotted: maximum pressure "
@@ -673,8 +681,7 @@ std::string impact_chart(const std::vector<Comparison>& rows, UnitSystem units) 
 }
 
 std::string hugoniot_chart(const std::vector<Comparison>& rows, UnitSystem units) {
-  const double c = from_natural(1.0, Dimension::velocity, units);
-  const std::string speed_unit = units == UnitSystem::si ? "m/s" : "c";
+  const auto [c, speed_unit] = speed_axis(units);
   std::string out = chart_header(
       "The Hugoniot against the isentrope: the pressure a bar at rest is compressed to, against the speed its "
       "material takes, through a shock (solid) and through a smooth compression wave (dashed). They coincide for "
