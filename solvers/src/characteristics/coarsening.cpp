@@ -349,8 +349,13 @@ double Tracker::fan_error(int id, double t, bool smooth_on) const {
   // A jump of σ in the middle of a ramp of width w misses it by two triangles, σ w/4 in
   // |δφ| + |δΨ| (σ/2 each, the other invariant being constant across a simple wave). The
   // ramp is no wider than the room between its neighbours: a staircase of steps stands for
-  // a fan one spacing per step.
-  const double room = 0.5 * (nodes_[n.next].X_at(t) - nodes_[n.prev].X_at(t));
+  // a fan one spacing per step. A compression wave's ramp only narrows, and its step stands
+  // half a strip inside it at its edge: beside a plateau (what a free end reflects of a fan's
+  // last step as the end leaves a wall, say) it reaches no further out than the strip on the
+  // other side.
+  const double before = n.X_at(t) - nodes_[n.prev].X_at(t), after = nodes_[n.next].X_at(t) - n.X_at(t);
+  const double room = n.front_kind == FrontKind::shock ? std::min(0.5 * (before + after), 2.0 * std::min(before, after))
+                                                       : 0.5 * (before + after);
   const double staircase = 0.25 * strength * std::min(spread, room);
   return smooth_on ? std::min(staircase, reconstruction_error(id, t)) : staircase;
 }
