@@ -165,12 +165,12 @@ bool Tracker::rejoin(int right_end, int left_end, double t, double x) {
   return true;
 }
 
-/// A crack closer to a free end of its piece than the resolution (the tolerance, see
-/// rebalance) × the droplet scale × the body's natural length would leave a droplet. Which side, if any (−1: the
+/// A crack closer to a free end of its piece than the droplet limit (ResolutionPolicy::droplet_limit: the
+/// resolution × the droplet scale × the body's natural length) would leave a droplet. Which side, if any (−1: the
 /// droplet is left of label X, +1: right of it; 0: no droplet, or it holds an interface or touches something).
 int Tracker::droplet_side(int piece, double X, double t) const {
   const Piece& p = pieces_[piece];
-  const double limit = resolution_ * droplet_scale_[p.body] * scene_.bodies[p.body].natural_length();
+  const double limit = policy_.droplet_limit(p.body, scene_.bodies[p.body].natural_length());
   const double left = X - nodes_[p.left_end].X_at(t), right = nodes_[p.right_end].X_at(t) - X;
   const int side = left <= right ? -1 : +1;
   if (!(std::min(left, right) < limit)) return 0;
@@ -218,7 +218,7 @@ void Tracker::absorb_droplet(int piece, int side, int before, double X, double x
     book(straddling, (inside.empty() ? nodes_[stop].X_at(t) : nodes_[inside.front()].X_at(t)) - X);
     for (int n : inside) book(nodes_[n].right, nodes_[nodes_[n].next].X_at(t) - nodes_[n].X_at(t));
   }
-  rebalance();
+  policy_.at_droplet(ledger_);
   for (int n : inside) {
     account_front_end(n, t);
     // Its fan error goes with the error it carries, lost with it as it is killed.

@@ -11,13 +11,13 @@
 
 namespace rigidity::characteristics {
 
-/// Two neighbouring fronts of one family in one material whose weaker one is within
-/// `merge_` (strength times distance, the L1 error of moving it) of the other are one front:
-/// the weaker one moves onto the stronger, which then joins the outer states. For a
-/// linearly degenerate material that front is exact (the other invariant is the same on
-/// all three states); a shock of a genuinely nonlinear one must stay near its Hugoniot and
-/// a fan step within two fan steps. Keeps the fronts of long multi-body runs from growing
-/// without bound; returns the surviving front.
+/// Two neighbouring fronts of one family in one material whose weaker one is within what a
+/// merge may cost (ResolutionPolicy::merge_limit: strength times distance, the L1 error of
+/// moving it) of the other are one front: the weaker one moves onto the stronger, which then
+/// joins the outer states. For a linearly degenerate material that front is exact (the other
+/// invariant is the same on all three states); a shock of a genuinely nonlinear one must stay
+/// near its Hugoniot and a fan step within two fan steps. Keeps the fronts of long multi-body
+/// runs from growing without bound; returns the surviving front.
 /// The L1 error of replacing neighbouring fronts p < q of one family by one front, and where
 /// it goes: at the label X̄ that keeps the lab length of the pair, so that lab positions stay
 /// continuous, X̄ = Xp + (Xq − Xp)(ℓM − ℓR)/(ℓL − ℓR) with ℓ = s/γ. For two steps of one sign
@@ -49,7 +49,7 @@ int Tracker::merge_neighbours(int id, double t) {
   for (;;) {
     if (id == kNone || !nodes_[id].alive || nodes_[id].kind != NodeKind::front) return id;
     int best_left = kNone;
-    double best_cost = merge_;
+    double best_cost = policy_.merge_limit();
     for (int side = 0; side < 2; ++side) {
       const int p = side == 0 ? nodes_[id].prev : id;
       const int q = side == 0 ? id : nodes_[id].next;
@@ -67,7 +67,7 @@ int Tracker::merge_neighbours(int id, double t) {
       // here, before the curves are evaluated. The margin covers a step's distance from its
       // curve (star_mismatch_) and round-off.
       if (np.front_kind == FrontKind::rarefaction && nq.front_kind == FrontKind::rarefaction &&
-          0.5 * (np.strength + nq.strength) > 2.0 * fan_step_ * (1.0 + 1e-9) + 2.0 * star_mismatch_)
+          0.5 * (np.strength + nq.strength) > 2.0 * policy_.fan_step() * (1.0 + 1e-9) + 2.0 * star_mismatch_)
         continue;
       const double cost = merge_cost(p, q, t, nullptr);
       if (cost <= best_cost) {
@@ -93,10 +93,11 @@ int Tracker::merge_neighbours(int id, double t) {
         const Solved<double> exact = hugoniot_rapidity(m, outer, inner.stretch, family);
         if (!exact.ok()) return id;
         off = std::abs(exact.value - inner.rapidity);
-        if (!(off < weak_)) return id;
+        if (!(off < policy_.weak_wave())) return id;
       } else {
         kind = FrontKind::rarefaction;
-        if (std::abs(m.riemann_psi(outer.stretch) - m.riemann_psi(inner.stretch)) >= 2.0 * fan_step_) return id;
+        if (std::abs(m.riemann_psi(outer.stretch) - m.riemann_psi(inner.stretch)) >= 2.0 * policy_.fan_step())
+          return id;
       }
       if (!(std::abs(label_jump_speeds(m, L.state, R.state, family).lab) < 1.0)) return id;  // no faster than light
     }
@@ -218,8 +219,9 @@ bool Tracker::merge_across(int p, int q, double t) {
   const int f = nodes_[p].family;
   const int left_of_p = nodes_[p].prev, right_of_q = nodes_[q].next;
   if (left_of_p == kNone || right_of_q == kNone) return false;
+  const double limit = policy_.merge_limit();
   // No merge costs less than the weaker front times the distance: most are refused here.
-  if (std::min(nodes_[p].strength, nodes_[q].strength) * (nodes_[q].X_at(t) - nodes_[p].X_at(t)) > merge_) return false;
+  if (std::min(nodes_[p].strength, nodes_[q].strength) * (nodes_[q].X_at(t) - nodes_[p].X_at(t)) > limit) return false;
   const auto invariant = [&](const State& st, int family) { return st.rapidity + family * memo_->psi(m, st.stretch); };
   const State before = nodes_[left_of_p].right.state;
   const State after_q = nodes_[q].right.state;
@@ -229,7 +231,7 @@ bool Tracker::merge_across(int p, int q, double t) {
   const double Xp = nodes_[p].X_at(t), Xq = nodes_[q].X_at(t);
   const double sigma_p = j_after_p - j_before, sigma_q = j_after_q - j_after_p;
   const double weaker = std::min(std::abs(sigma_p), std::abs(sigma_q));
-  if (weaker * (Xq - Xp) > merge_) return false;
+  if (weaker * (Xq - Xp) > limit) return false;
   // To first order in the jumps, keeping the lab length puts X̄ at the strength-weighted mean
   // of p and q for two steps of one sign (cost 2 σp σq/(σp + σq) × distance), and beyond the
   // weaker one for a bump (cost 2 min(|σp|, |σq|) × distance). Almost every merge refused is
@@ -237,7 +239,7 @@ bool Tracker::merge_across(int p, int q, double t) {
   // higher orders make cheaper to the exact cost below.
   const double estimate =
       (sigma_p * sigma_q > 0.0 ? 2.0 * sigma_p * sigma_q / (sigma_p + sigma_q) : 2.0 * weaker) * (Xq - Xp);
-  if (estimate > kMergeEstimateMargin * merge_) return false;
+  if (estimate > kMergeEstimateMargin * limit) return false;
   const auto with_invariant = [&](const State& st, double j_f) -> Solved<State> {
     const double j_other = invariant(st, -f);
     const double j_plus = f > 0 ? j_f : j_other, j_minus = f > 0 ? j_other : j_f;
@@ -297,7 +299,7 @@ bool Tracker::merge_across(int p, int q, double t) {
     const double left_part = i < split ? g.b - g.a : i == split ? X_merged - g.a : 0.0;
     cost += std::abs(j_before - g.j_old) * left_part + std::abs(j_after_q - g.j_old) * (g.b - g.a - left_part);
   }
-  if (cost > merge_) return false;
+  if (cost > limit) return false;
 
   // p and q leave; one front of family f enters at X̄.
   apply_merge_across(p, q, split, X_merged, cost, j_before, j_after_q, extend_left, t);
@@ -323,7 +325,7 @@ void Tracker::merge_nearby(int id, double t) {
       // cheap pair needs the other front to be the weaker one, and that front looks for
       // this one when it next meets something: the walk stops (most crossings stop here,
       // so this is asked first).
-      if (strength * std::abs(other.X_at(t) - X) > merge_) break;
+      if (strength * std::abs(other.X_at(t) - X) > policy_.merge_limit()) break;
       if (other.kind != NodeKind::front || other.right.material != m) break;
       if (direction < 0 && nodes_[other.prev].right.material != m) break;
       if (other.family != f) continue;

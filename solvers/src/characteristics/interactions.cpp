@@ -136,7 +136,7 @@ bool Tracker::cross_in_place(int a, int b, double t, InPlace& c) {
     for (int k = 0; k < 2; ++k) c.off_curve[k] = shock[k] || !found.value.converged ? found.value.off[k] : 0.0;
     c.strength[0] = std::abs((c.star.rapidity - left.rapidity) - (c.psi_star - psi_left));
     c.strength[1] = std::abs((right.rapidity - c.star.rapidity) + (psi_right - c.psi_star));
-    if (c.strength[0] < weak_merging_ && na.family == nb.family) {
+    if (c.strength[0] < policy_.weak_merging() && na.family == nb.family) {
       c.held_back = true;
       c.star = left;
       c.psi_star = psi_left;
@@ -155,12 +155,12 @@ bool Tracker::cross_in_place(int a, int b, double t, InPlace& c) {
       if (same_state(outer, c.star)) return false;
       if (shock[k]) {
         c.kinds[k] = FrontKind::shock;
-        if (!(c.off_curve[k] < weak_)) return false;
+        if (!(c.off_curve[k] < policy_.weak_wave())) return false;
       } else {
         c.kinds[k] = FrontKind::rarefaction;
         const double span = std::abs(c.psi_star - (k == 0 ? psi_left : psi_right));
         // A new fan is split in steps; a step of a smooth wave goes on as one step.
-        if (span >= 2.0 * fan_step_ && !na.smooth && !nb.smooth) return false;
+        if (span >= 2.0 * policy_.fan_step() && !na.smooth && !nb.smooth) return false;
       }
     }
   }
@@ -179,7 +179,7 @@ void Tracker::hand_on_in_place(int a, int b, double t, InPlace& c) {
   c.born[0] = c.born[1] = t;
   c.smooth_in.add(na.family > 0 ? 1 : 0, na.smooth, false);
   c.smooth_in.add(nb.family > 0 ? 1 : 0, nb.smooth,
-                  na.family == nb.family && converge(na, nb, kSuperposed * fan_step_));
+                  na.family == nb.family && converge(na, nb, kSuperposed * policy_.fan_step()));
   // The errors the outgoing waves carry ([0] C−, [1] C+): each incoming front's goes on with
   // the wave of its family (two of one family merge into one), with what its fan step booked.
   for (Node* n : {&na, &nb}) {
@@ -220,7 +220,7 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   hand_on_in_place(a, b, t, c);
 
   ++result_.stats.interactions;
-  steer_merges();
+  policy_.after_interaction(live_fronts_, light_fronts_, light_bodies_);
   const double x = 0.5 * (na.x_at(t) + nb.x_at(t));
   close_defect(na, t);
   close_defect(nb, t);
@@ -306,7 +306,7 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     // strength exceeds what a merge may cost (merge_nearby): asked here first, as it
     // usually settles it for both.
     const double nearest = std::min(X - before.X_at(t), after.X_at(t) - X);
-    if (!(std::min(nodes_[a].strength, nodes_[b].strength) * nearest > merge_)) {
+    if (!(std::min(nodes_[a].strength, nodes_[b].strength) * nearest > policy_.merge_limit())) {
       merge_nearby(a, t);
       merge_nearby(b, t);
     }
@@ -428,13 +428,9 @@ void Tracker::wave(const Material& m, const State& outer, const State& star, int
   // A new fan in steps between one and two fan steps wide. A step of a smooth wave that has
   // grown through interactions goes on as one step: the steps it would split into would all
   // leave from where it is, not from where their characteristics are, half its width apart.
-  // The step count in double first: span / tolerance overflows an int for tolerances of 1e-11.
-  const double least = std::min<double>(kMinFanSteps, std::floor(span / (2.0 * resolution_)));
   const double speed_outer = characteristic_speeds(m, outer, family).lagrangian;
   const double speed_star = characteristic_speeds(m, star, family).lagrangian;
-  const double by_speed = std::ceil(std::abs(speed_star - speed_outer) /
-                                    (kMaxSpeedStep * std::max(std::abs(speed_outer), std::abs(speed_star))));
-  const double wanted = fresh ? std::max({std::floor(span / fan_step_), least, by_speed}) : 1.0;
+  const double wanted = fresh ? policy_.fan_steps(span, speed_outer, speed_star) : 1.0;
   const int steps = std::max(1, static_cast<int>(std::min(wanted, static_cast<double>(kMaxFanSteps))));
   if (fresh && steps > 1) {
     // A new centred fan, held as one front until something reaches it (split_fan).
@@ -563,8 +559,9 @@ void Tracker::take_in(const std::vector<int>& group, double t, Incoming& in) {
       continue;
     }
     const int f = n.family > 0 ? 1 : 0;
-    in.smooth_in.add(f, n.smooth,
-                     in.families_in[f] == n.piece && converge(nodes_[in.last_in[f]], n, kSuperposed * fan_step_));
+    in.smooth_in.add(
+        f, n.smooth,
+        in.families_in[f] == n.piece && converge(nodes_[in.last_in[f]], n, kSuperposed * policy_.fan_step()));
     in.last_in[f] = id;
     in.offset_in[f] += n.offset;
     ++in.count_in[f];
@@ -741,7 +738,8 @@ int Tracker::keep_droplet(const Meeting& g, RiemannSolution& sol, double XL, dou
   int droplet = 0;
   if (sol.parted && !g.left_boundary && !g.right_boundary && g.contact_left == kNone && g.interface == kNone &&
       g.left_piece == g.right_piece && mL == mR) {
-    steer_droplets(pieces_[g.left_piece].body);
+    const int body = pieces_[g.left_piece].body;
+    policy_.at_crack(body, body_pieces_[body]);
     droplet = droplet_side(g.left_piece, XL, t);
     if (droplet != 0) {
       const State& kept = droplet < 0 ? sol.right : sol.left;  // the rest's released state
@@ -968,7 +966,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
                          " do not advance in time: the waves of a material keep recreating each other there"
                          " (a material not convex in the sense the Riemann solver assumes?)");
   }
-  steer_merges();
+  policy_.after_interaction(live_fronts_, light_fronts_, light_bodies_);
   if (++result_.stats.interactions > scene_.solver.max_interactions) {
     recorder_.stop(budget_stop_reason(scene_, Budget::interactions, t));  // the run stops after this interaction
   }
@@ -1047,7 +1045,7 @@ void Tracker::hold_back_weak_wave(RiemannSolution& sol, const Region& left, cons
   const double weak_left = std::abs(wave_strength(*left.material, left.state, sol.left, -1));
   const double weak_right = std::abs(wave_strength(*right.material, right.state, sol.right, +1));
   const double weaker = std::min(weak_left, weak_right);
-  if (!(weaker < weak_) || weaker == 0.0) return;
+  if (!(weaker < policy_.weak_wave()) || weaker == 0.0) return;
   const bool drop_left = weak_left <= weak_right;
   const Region& kept = drop_left ? left : right;  // the side whose wave is held back keeps its state
   const Region& moved = drop_left ? right : left;

@@ -67,7 +67,7 @@ class ErrorLedger {
   [[nodiscard]] double defects() const { return defects_; }
   [[nodiscard]] double droplets() const { return droplets_; }
   [[nodiscard]] double lost() const { return lost_; }
-  /// What scattering grew the carried errors by (see Tracker::rebalance).
+  /// What scattering grew the carried errors by (see ResolutionPolicy::at_droplet).
   [[nodiscard]] double scattered() const { return scattered_; }
   /// Every total finite and non-negative.
   [[nodiscard]] bool sound() const {

@@ -51,7 +51,7 @@ void Tracker::make_light(double t) {
     // A lone body with few fronts keeps them: they never multiply (walls and free ends
     // reflect a front as one front), and the queues would only cost it time.
     if (scene_.bodies.size() == 1 && fronts_in < kLightMinFronts) continue;
-    if (lattice && static_cast<double>(fronts_in) > front_cap_) continue;  // it would dissolve at once
+    if (lattice && static_cast<double>(fronts_in) > policy_.front_cap()) continue;  // it would dissolve at once
     LightPiece& lp = light_[piece];
     if (lattice && !make_lattice(static_cast<int>(piece), t)) continue;
     light_bodies_ += 1.0;
@@ -230,7 +230,7 @@ void Tracker::absorb_light(int piece, double t) {
   if (lp.lattice) {
     // A lattice piece has no merges: past its cap, or once its invariants could meet in a
     // state the material cannot take, its fronts go back on the node list.
-    if (static_cast<double>(lp.plus.size() + lp.minus.size()) > front_cap_ || !lattice_safe(lp, m)) {
+    if (static_cast<double>(lp.plus.size() + lp.minus.size()) > policy_.front_cap() || !lattice_safe(lp, m)) {
       dissolve_lattice(piece, t);
       return;
     }
@@ -263,7 +263,7 @@ bool Tracker::merge_light(int piece, int family, double t) {
   // the lab distance between the two (a merge costs about the weaker front times the natural
   // length between them, γ/s times the lab length) already costs more than a merge may.
   const double weaker = std::min(std::abs(j_between - j_near_old), std::abs(j_near_new - j_between));
-  if (weaker * std::abs(x_old - x_new) * 0.5 > merge_light_) return false;
+  if (weaker * std::abs(x_old - x_new) * 0.5 > policy_.light_merge_limit()) return false;
   // How far the merged front may go: the next front of the family ahead, or the far end.
   const double x_limit = queue.size() >= 3
                              ? queue[queue.size() - 3].x_at(t, family)
@@ -342,7 +342,7 @@ bool Tracker::merge_light(int piece, int family, double t) {
     cost += density_old[i] *
             (std::abs(j_near_new - parts[i].j_old) * swept + std::abs(j_near_old - parts[i].j_old) * (length - swept));
   }
-  if (cost > merge_light_) return false;
+  if (cost > policy_.light_merge_limit()) return false;
   ++merged_;
   older.carried += newer.carried + ledger_.book_merge(cost);
   older.smooth = older.smooth && newer.smooth;

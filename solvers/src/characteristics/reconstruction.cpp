@@ -240,7 +240,7 @@ bool Tracker::light_reconstruct(int piece, double x, double t, State& state) con
     // As on a node piece (strip_edge): a weak smooth step riding on the wave is a jump on top
     // of its line, not one of the steps the line is drawn through.
     const auto riding = [&](long i) {
-      return q[i].smooth && std::abs(right_of(i) - left_of(i)) < kSuperposed * fan_step_;
+      return q[i].smooth && std::abs(right_of(i) - left_of(i)) < kSuperposed * policy_.fan_step();
     };
     // C+ fronts stand right to left in their queue, C− fronts left to right.
     const long n = static_cast<long>(q.size()), leftwards = family > 0 ? 1 : -1;

@@ -25,7 +25,6 @@ void Tracker::build_bodies() {
     pieces_.push_back(Piece{static_cast<int>(b), kNone, kNone});
     order_.push_back(piece);
     body_pieces_.push_back(1);
-    droplet_scale_.push_back(1.0);
     double X = 0.0, x = body.position;
     const int left = new_node(NodeKind::left_end, piece);
     nodes_[left].front_kind = FrontKind::boundary;
@@ -84,7 +83,8 @@ void Tracker::build_walls() {
     w.t0 = 0.0;
     if (d.type == BoundaryType::piston) {
       // A linear table's ramps in steps of the width fans have: smooth waves between them.
-      w.motion = d.piston.ramps ? linear_piston(d.piston.row_times, d.piston.row_rapidities, fan_step_) : d.piston;
+      w.motion =
+          d.piston.ramps ? linear_piston(d.piston.row_times, d.piston.row_rapidities, policy_.fan_step()) : d.piston;
       w.rapidity = w.motion.rapidities.empty() ? 0.0 : w.motion.rapidities.front();
     }
   }
@@ -119,29 +119,11 @@ RunResult Tracker::run() {
 }
 
 void Tracker::set_thresholds() {
-  // The threshold of weak waves: each interface or contact holding back a wave weaker than
-  // `weak_` adds at most weak_ × (the speeds of the waves on its two sides, ~1) per unit time
-  // to the L1 error; over the time light takes to cross the bodies' natural length, for every
-  // such place, that is about half the tolerance's budget. The thresholds do not depend on
-  // time.end, so that the work per unit time does not either: a run much longer than that
-  // crossing time reports a bound that grows with it.
   total_length_ = 0.0;
-  int places = 0;
-  for (const BodyDecl& b : scene_.bodies) {
-    total_length_ += b.natural_length();
-    for (std::size_t k = 1; k < b.segments.size(); ++k)
-      places += b.segments[k].material != b.segments[k - 1].material ? 1 : 0;
-  }
-  places += static_cast<int>(scene_.bodies.size()) - 1;
-  // Merges and the reflections of merging fronts come more often the finer the tolerance
-  // (as fan steps, their number grows as 1/tolerance): what each may cost falls as its square,
-  // so that their sum falls with the tolerance.
+  for (const BodyDecl& b : scene_.bodies) total_length_ += b.natural_length();
   const double tolerance = scene_.solver.tolerance;
   star_mismatch_ = kStarMismatch * tolerance * tolerance;
   dissipation_precision_ = kDissipationPrecision * tolerance;
-  places_ = std::max(1, places);
-  set_resolution(tolerance);
-  piece_cap_ = std::max(kMinPiecesPerBody, kPiecesPerBody / tolerance);
 }
 
 void Tracker::schedule_start() {
@@ -178,12 +160,13 @@ void Tracker::event_loop() {
   // few times as many), a gap closing, a piston changing speed, or a sample. An interaction
   // emits at most one front per family, except a fan, split into steps of Ψ between one and
   // two tolerances wide; it removes those it resolves. Live fronts are bounded by the cap
-  // bodies × front_cap_, front_cap_ = max(kMinFrontsPerBody, kFrontsPerBody/tolerance)
-  // (merges grow costlier while it is exceeded), so a crossing of the bodies by the waves costs at most about
-  // front_cap_²/4 interactions and the interactions grow linearly with time.end. Fans alone need about (their span in
-  // Ψ)/tolerance steps: a genuinely nonlinear body costs ~1/tolerance² per crossing. A spray whose droplets book more
-  // than the tolerance coarsens all this to its own level (rebalance): its cost per crossing then no longer grows as
-  // the tolerance falls.
+  // bodies × front cap, front cap = max(kMinFrontsPerBody, kFrontsPerBody/tolerance)
+  // (ResolutionPolicy; merges grow costlier while it is exceeded), so a crossing of the bodies
+  // by the waves costs at most about (front cap)²/4 interactions and the interactions grow
+  // linearly with time.end. Fans alone need about (their span in Ψ)/tolerance steps: a
+  // genuinely nonlinear body costs ~1/tolerance² per crossing. A spray whose droplets book more
+  // than the tolerance coarsens all this to its own level (ResolutionPolicy::at_droplet): its
+  // cost per crossing then no longer grows as the tolerance falls.
   for (;;) {
     while (!queue_.empty() && !valid(queue_.front())) pop_event();
     // The earliest of the next rare event and the next meeting (ties in the order scheduled).
@@ -292,7 +275,7 @@ Tracker::BoundParts Tracker::error_bound_parts(double t_end) const {
 void Tracker::report_error_bound(const BoundParts& bound) {
   const double error_bound = bound.error_bound, carried = bound.carried, error_fans_alive = bound.error_fans_alive;
   result_.solver_numbers.emplace_back("error_bound", error_bound);
-  result_.solver_numbers.emplace_back("weak_wave_threshold", weak_);
+  result_.solver_numbers.emplace_back("weak_wave_threshold", policy_.weak_wave());
   result_.solver_numbers.emplace_back("waves_held_back", static_cast<double>(suppressed_));
   result_.solver_numbers.emplace_back("fronts_merged", static_cast<double>(merged_));
   result_.solver_numbers.emplace_back("error_defects", ledger_.defects() / total_length_);
@@ -302,8 +285,8 @@ void Tracker::report_error_bound(const BoundParts& bound) {
   result_.solver_numbers.emplace_back("droplets", static_cast<double>(droplets_));
   result_.solver_numbers.emplace_back("error_droplets", ledger_.droplets() / total_length_);
   result_.solver_numbers.emplace_back("fronts_alive_max", static_cast<double>(live_fronts_max_));
-  result_.solver_numbers.emplace_back("wave_resolution", coarsest_resolution_);
-  result_.solver_numbers.emplace_back("fan_step_max", widest_fan_step_);
+  result_.solver_numbers.emplace_back("wave_resolution", policy_.coarsest_resolution());
+  result_.solver_numbers.emplace_back("fan_step_max", policy_.widest_fan_step());
   if (qualitative_cracks_ > 0) {
     // In the scene's units, as every time a run reports.
     const double since = from_natural(qualitative_since_, Dimension::time, scene_.units);
@@ -335,13 +318,13 @@ void Tracker::report_error_bound(const BoundParts& bound) {
     }
     return number(v);
   };
-  const bool spray_coarsened = coarsest_resolution_ > scene_.solver.tolerance;
+  const bool spray_coarsened = policy_.coarsest_resolution() > scene_.solver.tolerance;
   if (spray_coarsened) {
     result_.warnings.push_back(
         "the droplets of a spray booked " + two_digits(kStability * ledger_.droplets() / total_length_) +
         " of the error bound, which no tolerance reduces: while they dominated, waves and "
         "droplets were resolved more coarsely than solver.tolerance = " +
-        number(scene_.solver.tolerance) + ", at most to " + above_tolerance(coarsest_resolution_));
+        number(scene_.solver.tolerance) + ", at most to " + above_tolerance(policy_.coarsest_resolution()));
   }
   // A bound above the tolerance asked for: say which part holds it up and what would lower it.
   if (scene_.solver.tolerance_given && error_bound > scene_.solver.tolerance &&
@@ -350,8 +333,8 @@ void Tracker::report_error_bound(const BoundParts& bound) {
                              ledger_.droplets()};
     const int largest = static_cast<int>(std::max_element(parts, parts + 4) - parts);
     const std::string why[4] = {
-        "merges that held the live fronts to their cap (max(" + number(kMinFrontsPerBody) + ", " +
-            number(kFrontsPerBody) +
+        "merges that held the live fronts to their cap (max(" + number(ResolutionPolicy::kMinFrontsPerBody) + ", " +
+            number(ResolutionPolicy::kFrontsPerBody) +
             "/tolerance) per body): the waves scatter into more fronts than the cap lets the run follow",
         ("the steps of smooth waves (fans and piston ramps, reconstructed between them where they "
          "cross only each other, staircases where shocks and rigid bodies meet them; the widest step is "

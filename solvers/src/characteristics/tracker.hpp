@@ -26,6 +26,7 @@
 #include "ledger.hpp"
 #include "meeting_queue.hpp"
 #include "memo.hpp"
+#include "policy.hpp"
 #include "rigidity/errors.hpp"
 #include "rigidity/run_recorder.hpp"
 #include "rigidity/run_result.hpp"
@@ -45,56 +46,6 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 /// Steps a single rarefaction fan may be split into; beyond it the fan is coarser
 /// than solver.tolerance and the run says so in its warnings.
 constexpr int kMaxFanSteps = 100000;
-/// A rarefaction fan is split into steps of this many √tolerance in Ψ. The samples
-/// reconstruct the fan linearly between its steps (Tracker::reconstruct), which misses it by
-/// its curvature, second order in the step: an L1 error of about δ² per unit length for
-/// steps δ (measured on the crossed fan of bench/second_order.py: error ≈ 1.2 δ² at t = 3),
-/// which the bound books at about twice that: steps of 0.7 √tolerance put the bound of a
-/// scene of fans near the tolerance.
-constexpr double kFanStepPerRootTolerance = 0.7;
-/// The widest fan step, in Ψ, and the most the fan's characteristic speed (in the labels) may
-/// change across one of its steps, relative to itself: the reconstruction's error is second
-/// order in the step while the speeds change little across one (a few percent); coarser steps
-/// meet shocks and each other as the jumps they are, at first order (measured on the random
-/// gas-bar scenes of the bound tests, and on a Murnaghan bar whose sound is ten times slower).
-constexpr double kMaxFanStep = 0.02;
-constexpr double kMaxSpeedStep = 0.04;
-[[nodiscard]] inline double fan_step_for(double resolution) {
-  return std::min(kMaxFanStep, kFanStepPerRootTolerance * std::sqrt(resolution));
-}
-/// A fan is split into at least this many steps where steps of 2 × tolerance would make as
-/// many: a line through fewer steps reconstructs little of it, and a shock that overtakes a
-/// fan of one or two steps is displaced by the whole fan at once.
-constexpr int kMinFanSteps = 4;
-/// A merge of two neighbouring fronts may cost at most this fraction of the tolerance's L1
-/// budget (tolerance × natural length of all bodies): thousands of merges fit in it.
-constexpr double kMergeFraction = 1.0;
-/// Live fronts per body beyond which merges may cost more (see Tracker::steer_merges):
-/// kFrontsPerBody / tolerance, at least kMinFrontsPerBody. At the cap the bound grows as
-/// 1/fronts and the work as fronts²: on 150 random scenes (tolerance 1e-3, t = 20) 0.3 in
-/// place of 0.5, with kDropletBalance 1 in place of 0.5, took the slowest from 2.2 to 1.35 s
-/// and the sum from 25 to 18.5 s, with the median bound unchanged (those held at the cap: 1.7
-/// times theirs). 0.25 in place of 0.3 came with merges steered to hold the cap rather than
-/// halve the fronts (kMergeSteering, kMergeRelease): see steer().
-constexpr double kFrontsPerBody = 0.25;
-constexpr double kMinFrontsPerBody = 100.0;
-/// While the live fronts exceed their cap, what a merge may cost grows by this factor per
-/// interaction; once they are below kMergeRelease × the cap it falls back by as much. Merges
-/// then hold the fronts near the cap at the least cost that does it. On 400 random scenes
-/// (tolerance 1e-3, t = 20), against growth by 1.01 and release at half the cap, with the cap
-/// at 0.3/tolerance: the 132 scenes changed made 0.885 times the interactions for 0.99 times
-/// the bound × √interactions (geometric mean), the median bound of all 0.051 -> 0.044, the
-/// slowest (random seed 293, two gas bars held at the cap) 0.89 -> 0.69 s. Release at half
-/// the cap alone with the cap at 0.25 made the bound × √interactions 1.08 times larger;
-/// growth by 1.01 with release at 0.9, 1.04 times.
-constexpr double kMergeSteering = 1.002;
-constexpr double kMergeRelease = 0.9;
-/// Pieces per body beyond which droplets grow (see Tracker::steer_droplets): kPiecesPerBody /
-/// tolerance, at least kMinPiecesPerBody.
-constexpr double kPiecesPerBody = 0.02;
-constexpr double kMinPiecesPerBody = 8.0;
-/// The most a merge may cost, as a multiple of its cost while fronts are few.
-constexpr double kMergeCeiling = 1e4;
 /// Growth of an L1 error between the time it is made and t_end allowed for in the bound.
 constexpr double kStability = 2.0;
 /// The most an error carried by one wave may grow where that wave splits (see
@@ -110,16 +61,6 @@ constexpr double kStarMismatch = 1e-3;
 /// Relative precision of a shock's dissipation the energy books ask for, × tolerance: the
 /// direct difference of energies where its round-off allows, Gauss–Legendre otherwise.
 constexpr double kDissipationPrecision = 1.0;
-/// A spray's waves may book up to this multiple of what its droplets book before their
-/// resolution stops coarsening, by kResolutionStep per droplet (see Tracker::rebalance). The
-/// droplets' error does not fall as the resolution is refined (random seed 141: 0.049 at 0.01,
-/// 0.070 at 0.001), so waves resolved far below it buy little: on 150 random scenes
-/// (tolerance 1e-3, t = 20) 3 in place of 1 changed 54, their time × 0.72 and their bound
-/// × 0.95 (geometric means; the bound of the one most changed × 2.8, seed 134: 0.014 -> 0.040).
-constexpr double kDropletBalance = 3.0;
-/// The coarsest a spray may make the resolution of waves and droplets (see rebalance).
-constexpr double kCoarsestResolution = 0.005;
-constexpr double kResolutionStep = 1.1;
 /// A merge across fronts of the other family is tried in full only if its first-order cost
 /// is at most this multiple of what a merge may cost (see Tracker::merge_across).
 constexpr double kMergeEstimateMargin = 1.1;
@@ -379,12 +320,11 @@ struct WaveStates {
 
 class Tracker {
  public:
-  Tracker(const Scene& scene, RunRecorder& recorder) : scene_(scene), recorder_(recorder) {
+  Tracker(const Scene& scene, RunRecorder& recorder) : scene_(scene), recorder_(recorder), policy_(scene) {
     std::size_t segments = 0;
     for (const BodyDecl& body : scene.bodies) segments += body.segments.size();
     memo_ = std::make_unique<MaterialMemo>(std::bit_ceil(std::clamp<std::size_t>(64 * segments, 16, 1024)));
     want_fronts_ = scene.outputs.fronts;
-    fan_step_ = fan_step_for(scene.solver.tolerance);
   }
 
   RunResult run();
@@ -396,7 +336,8 @@ class Tracker {
   void build_bodies();
   void build_walls();
   // ---- the run's phases (tracker.cpp) ------------------------------------------------
-  /// The thresholds the tolerance sets (weak waves, merges, fan steps, the front and piece caps).
+  /// The bound's natural length and the thresholds of the tolerance that are no part of the
+  /// resolution (star mismatch, dissipation precision; policy_ holds the others).
   void set_thresholds();
   /// Contacts present at t = 0 (walls, touching bodies), and the events that resolve every
   /// initial discontinuity and end.
@@ -632,8 +573,8 @@ class Tracker {
   /// characteristics carry the ramp's rapidity, the staircase holds the step's until the next.
   [[nodiscard]] double ramp_ahead_error(double t) const;
   /// The states of the wave of `family` from `outer` to `star`: a new rarefaction fan (`fresh`:
-  /// no step of a smooth wave came in) in steps of fan_step_ in Ψ, and in at least
-  /// kMinFanSteps where steps of 2 × the resolution would make as many; a step going on, one.
+  /// no step of a smooth wave came in) in as many steps as ResolutionPolicy::fan_steps says; a
+  /// step going on, one.
   void wave(const Material& m, const State& outer, const State& star, int family, bool fresh, WaveStates& w);
   /// The states of a fan from `outer` to `star` in `steps` equal steps of Ψ (w.states).
   static void fan_states(const Material& m, const State& outer, const State& star, int family, int steps,
@@ -731,7 +672,6 @@ class Tracker {
   bool want_fronts_ = false;
   /// Ψ, stretches and characteristic speeds of the states linearly degenerate crossings revisit.
   std::unique_ptr<MaterialMemo> memo_;
-  double fan_step_ = 1e-12;
   bool fan_capped_ = false;
   /// Cracks that a smooth wave's steps decided (a step came in where the body parted): where
   /// and when the body parts then depends on the steps, so what follows is qualitative.
@@ -805,7 +745,7 @@ class Tracker {
   [[nodiscard]] bool superposed(int id, int family) const {
     const Node& n = nodes_[id];
     return n.kind == NodeKind::front && n.smooth && n.family == family &&
-           std::abs(own_jump(id)) < kSuperposed * fan_step_;
+           std::abs(own_jump(id)) < kSuperposed * policy_.fan_step();
   }
   static constexpr double kSuperposed = 0.1;
   /// Walking from node `from` towards `step` (&Node::prev or &Node::next) past smooth steps of
@@ -835,99 +775,18 @@ class Tracker {
   /// Lattice pieces are sampled as their staircases. Returns false where nothing changes.
   bool light_reconstruct(int piece, double x, double t, State& state) const;
   // ---- the error budget (see docs/solvers.md, "What the tolerance means") --------------------
-  double weak_ = 0.0;                   ///< strength |ΔJ| below which an interface or contact emits no wave
-  double weak_merging_ = 0.0;           ///< strength below which two fronts of one family merging emit no reflection
   double star_mismatch_ = 0.0;          ///< kStarMismatch × tolerance²
   double dissipation_precision_ = 0.0;  ///< kDissipationPrecision × tolerance
   double total_length_ = 1.0;           ///< natural length of all bodies: the error bound is per unit of it
   /// Every error booked, by kind, and what the waves carry of it.
   ErrorLedger ledger_;
-  long suppressed_ = 0;      ///< weak waves held back
-  double merge_base_ = 0.0;  ///< largest L1 error (strength × distance) of a merge while fronts are few
-  double merge_ = 0.0;       ///< the same now: raised while the live fronts exceed front_cap_
-  double front_cap_ = 0.0;   ///< per body
-  /// The thresholds that set how finely the waves are resolved: the tolerance, unless the
-  /// droplets of a spray have booked more than it (see rebalance).
-  int places_ = 1;  ///< interfaces and contacts among which weak_ shares its budget
-  double resolution_ = 0.0;
-  double coarsest_resolution_ = 0.0;  ///< reported as wave_resolution
-  void set_resolution(double r) {
-    resolution_ = r;
-    coarsest_resolution_ = std::max(coarsest_resolution_, r);
-    merge_base_ = kMergeFraction * r * r * total_length_;
-    merge_ = std::max(merge_, merge_base_);
-    merge_light_ = std::max(merge_light_, merge_base_);
-    weak_merging_ = 0.5 * r * r;
-    weak_ = 0.5 * r / places_;
-    fan_step_ = fan_step_for(r);
-    widest_fan_step_ = std::max(widest_fan_step_, fan_step_);
-    front_cap_ = std::max(kMinFrontsPerBody, kFrontsPerBody / r);  // per body
-  }
-  /// A spray's droplets (a chaotic sequence of collisions that knock pieces off) book an
-  /// error that does not fall with the tolerance, while resolving the waves around them to
-  /// the tolerance costs ~1/tolerance² per crossing. At each droplet, while the waves have
-  /// booked (merges and fan steps) less than kDropletBalance × what the droplets have, the
-  /// resolution of waves and droplets coarsens by kResolutionStep (no coarser than
-  /// kCoarsestResolution); once they have booked more, it refines by as much (no finer than
-  /// the tolerance). The waves' share of the bound then follows the droplets'. What the
-  /// splits of waves have grown the carried errors by (ErrorLedger::scattered: most of it at the
-  /// cracks a spray's waves set off, each displacing waves far stronger than itself) counts
-  /// with the droplets, as error already committed that a finer resolution of the waves to
-  /// come does not take back. It grows with what the waves made too, so where the spray's
-  /// scattering grows errors by more than a third the resolution goes to its coarsest: a
-  /// switch more than a balance, kept because it measured better. On 400 random scenes
-  /// (tolerance 1e-3, t = 20) counting it changed 117, their interactions × 0.86 and their
-  /// bound × √interactions × 0.92 (geometric means); on seeds 401–800, 124 changed, × 0.73
-  /// and × 0.91, the slowest spray (seed 745) 0.91 -> 0.19 s with its bound 1.4 -> 2.1
-  /// (errors carried through its cracks 1.3 of it).
-  void rebalance() {
-    double r = ledger_.merges() + ledger_.fans() < kDropletBalance * (ledger_.droplets() + ledger_.scattered())
-                   ? std::min(kCoarsestResolution, kResolutionStep * resolution_)
-                   : resolution_ / kResolutionStep;
-    r = std::max(r, scene_.solver.tolerance);
-    if (r != resolution_) set_resolution(r);
-  }
-  /// A solution that grows rough (a pulse scattered by many contacts into more and more
-  /// waves) cannot be held to a fixed L1 error by a bounded number of fronts. Work is bounded
-  /// first: while more fronts live than front_cap_ per body, the cost a merge may have grows by
-  /// kMergeSteering per interaction, and falls back towards merge_base_ once they are fewer
-  /// than kMergeRelease × the cap. The bound reports what it cost.
-  void steer_merges() {
-    const double bodies = static_cast<double>(scene_.bodies.size());
-    steer(merge_, static_cast<double>(live_fronts_ - light_fronts_), (bodies - light_bodies_) * front_cap_);
-    steer(merge_light_, static_cast<double>(light_fronts_), kLightCap * light_bodies_ * front_cap_);
-  }
-  void steer(double& merge, double fronts, double cap) const {
-    if (fronts > cap) {
-      merge = std::min(merge * kMergeSteering, kMergeCeiling * merge_base_);
-    } else if (merge > merge_base_ && fronts < kMergeRelease * cap) {
-      merge = std::max(merge_base_, merge / kMergeSteering);
-    }
-  }
-  /// Fronts of light pieces cost O(1) per crossing time each, not O(fronts): they have a cap
-  /// of their own, this many times the others', and merges steered by it.
-  static constexpr double kLightCap = 10.0;
-  double merge_light_ = 0.0;
+  long suppressed_ = 0;  ///< weak waves held back
+  /// The thresholds that set how finely waves and droplets are resolved, and their controllers.
+  ResolutionPolicy policy_;
   long light_fronts_ = 0;
   double light_bodies_ = 0.0;                             ///< bodies whose one piece is light
-  double widest_fan_step_ = 0.0;                          ///< reported as fan_step_max
   double droplet_energy_ = 0.0, droplet_momentum_ = 0.0;  ///< what keeping them changed
-  /// Per body: its pieces, and the droplet length as a multiple of tolerance × its length.
-  /// A spray that keeps more pieces than kPiecesPerBody / tolerance alive (each collision of
-  /// unequal rigid-fluid pieces knocks a new one off) is held to that many by letting the
-  /// droplet length grow by 2 % per crack, up to a quarter of the body; it falls back once
-  /// the pieces are half as many. The bound reports what it cost.
-  std::vector<int> body_pieces_;
-  std::vector<double> droplet_scale_;
-  double piece_cap_ = 0.0;
-  void steer_droplets(int body) {
-    const double max_scale = 0.5 / (piece_cap_ * resolution_);
-    if (body_pieces_[body] > piece_cap_) {
-      droplet_scale_[body] = std::min(droplet_scale_[body] * 1.02, std::max(1.0, max_scale));
-    } else if (droplet_scale_[body] > 1.0 && body_pieces_[body] < 0.5 * piece_cap_) {
-      droplet_scale_[body] = std::max(1.0, droplet_scale_[body] / 1.02);
-    }
-  }
+  std::vector<int> body_pieces_;                          ///< per body: its pieces
   long droplets_ = 0;
   long merged_ = 0;
   long live_fronts_max_ = 0;
