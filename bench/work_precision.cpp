@@ -311,8 +311,8 @@ double characteristics_error(const SceneDef& def, Config& c) {
         std::vector<double> fronts;
         for (const rigidity::FrontSegment& f : r.fronts)
           if (f.t1 == t &&
-              (f.kind == rigidity::FrontKind::shock || f.kind == rigidity::FrontKind::contact ||
-               f.kind == rigidity::FrontKind::rarefaction) &&
+              (f.kind == rigidity::SegmentKind::shock || f.kind == rigidity::SegmentKind::contact ||
+               f.kind == rigidity::SegmentKind::rarefaction) &&
               f.x1 > bs.x.front() && f.x1 < bs.x.back())
             fronts.push_back(f.x1);
         std::sort(fronts.begin(), fronts.end());

@@ -179,10 +179,10 @@ void write_file(const fs::path& dir, const fs::path& path, UnitSystem units) {
   if (fs::exists(dir / "fronts.csv")) {
     std::vector<double> t0, x0, t1, x1;
     std::vector<signed char> family, kind;
-    constexpr FrontKind kKinds[] = {FrontKind::shock, FrontKind::contact, FrontKind::rarefaction, FrontKind::interface,
-                                    FrontKind::boundary};
+    constexpr SegmentKind kKinds[] = {SegmentKind::shock, SegmentKind::contact, SegmentKind::rarefaction,
+                                      SegmentKind::interface, SegmentKind::boundary};
     std::string names;
-    for (const FrontKind k : kKinds) names += (names.empty() ? "" : ",") + std::string(to_string(k));
+    for (const SegmentKind k : kKinds) names += (names.empty() ? "" : ",") + std::string(to_string(k));
     for (const auto& row : rows_of(dir / "fronts.csv")) {
       if (row.size() != 6) throw std::runtime_error("run.h5: fronts.csv has a row of " + std::to_string(row.size()));
       t0.push_back(number_of(row[0], dir / "fronts.csv"));

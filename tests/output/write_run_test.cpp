@@ -65,8 +65,8 @@ RunResult wall_impact_result() {
     r.snapshots.push_back(SnapshotSample{0.5, 0, X, Quantity::x, 0.25 + 0.5 * X});
     r.snapshots.push_back(SnapshotSample{0.5, 0, X, Quantity::p, X < 0.5 ? 0.0 : 1.5});
   }
-  r.fronts = {FrontSegment{0.0, 1.0, 0.5, 0.5, FrontKind::shock, -1},
-              FrontSegment{0.5, 0.5, 1.0, 1.0, FrontKind::rarefaction, 1}};
+  r.fronts = {FrontSegment{0.0, 1.0, 0.5, 0.5, SegmentKind::shock, -1},
+              FrontSegment{0.5, 0.5, 1.0, 1.0, SegmentKind::rarefaction, 1}};
   return r;
 }
 

@@ -108,7 +108,7 @@ outputs:
   // The shock: a straight world line from the initial jump (lab x = 0.25) at the exact speed.
   int segments = 0;
   for (const FrontSegment& f : r.fronts) {
-    if (f.kind != FrontKind::shock) continue;
+    if (f.kind != SegmentKind::shock) continue;
     ++segments;
     EXPECT_EQ(f.family, +1);
     EXPECT_NEAR((f.x1 - f.x0) / (f.t1 - f.t0), ref.right.front_lab_speed(), kTracked);
@@ -191,7 +191,7 @@ outputs:
   EXPECT_EQ(checked, 24);
   int segments = 0;
   for (const FrontSegment& f : r.fronts)
-    if (f.kind == FrontKind::shock) {
+    if (f.kind == SegmentKind::shock) {
       ++segments;
       EXPECT_NEAR((f.x1 - f.x0) / (f.t1 - f.t0), ref.left.front_lab_speed(), kTracked);
     }

@@ -80,7 +80,7 @@ void Tracker::record_fan_edges(int id, double t) {
   for (const int side : {0, 1}) {
     const State& s = side == 0 ? nodes_[n.prev].right.state : n.right.state;
     const double lab = characteristic_speeds(*f.material, s, f.family).lab;
-    recorder_.front(FrontSegment{f.t0, f.x0, t, f.x0 + lab * (t - f.t0), FrontKind::rarefaction, f.family});
+    recorder_.front(FrontSegment{f.t0, f.x0, t, f.x0 + lab * (t - f.t0), SegmentKind::rarefaction, f.family});
   }
 }
 

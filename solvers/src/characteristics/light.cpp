@@ -347,7 +347,7 @@ bool Tracker::merge_light(int piece, int family, double t) {
   older.carried += newer.carried + ledger_.book_merge(cost);
   older.smooth = older.smooth && newer.smooth;
   if (want_fronts_ && t > older.t0) {
-    recorder_.front(FrontSegment{older.t0, older.x0, t, x_old, FrontKind::contact, family});
+    recorder_.front(FrontSegment{older.t0, older.x0, t, x_old, SegmentKind::contact, family});
   }
   older.j_behind = j_near_new;
   older.intercept = place - family * t;
@@ -363,7 +363,7 @@ void Tracker::record_light_segments(int piece, double t) {
   if (!want_fronts_) return;
   for (int family : {+1, -1}) {
     for (const LightFront& f : family > 0 ? light_[piece].plus : light_[piece].minus) {
-      if (t > f.t0) recorder_.front(FrontSegment{f.t0, f.x0, t, f.x_at(t, family), FrontKind::contact, family});
+      if (t > f.t0) recorder_.front(FrontSegment{f.t0, f.x0, t, f.x_at(t, family), SegmentKind::contact, family});
     }
   }
 }

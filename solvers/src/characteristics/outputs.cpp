@@ -14,7 +14,7 @@ namespace rigidity::characteristics {
 void Tracker::record_segment(Node& n, double t) {
   if (!want_fronts_) return;
   if (t <= n.t0) return;  // nothing travelled
-  recorder_.front(FrontSegment{n.t0, n.x0, t, n.x_at(t), n.front_kind, n.family});
+  recorder_.front(FrontSegment{n.t0, n.x0, t, n.x_at(t), segment_kind(n.front_kind), n.family});
 }
 
 void Tracker::account_front_end(int id, double t) {

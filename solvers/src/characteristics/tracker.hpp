@@ -69,6 +69,21 @@ constexpr int kMergeReach = 8;
 
 /// light_store: the one node between the ends of a light piece (see LightPiece).
 enum class NodeKind : std::uint8_t { front, interface, left_end, right_end, light_store };
+/// What a front is as a wave: a shock, a jump that moves with the characteristics on both
+/// sides (contact: every wave of a linearly degenerate material), or a step of a rarefaction
+/// fan. Interfaces and ends carry interface and boundary, the lines they draw.
+enum class FrontKind : std::uint8_t { shock, contact, rarefaction, interface, boundary };
+/// The line a node draws in the x–t diagram (fronts.csv).
+[[nodiscard]] constexpr SegmentKind segment_kind(FrontKind k) {
+  switch (k) {
+    case FrontKind::shock: return SegmentKind::shock;
+    case FrontKind::contact: return SegmentKind::contact;
+    case FrontKind::rarefaction: return SegmentKind::rarefaction;
+    case FrontKind::interface: return SegmentKind::interface;
+    case FrontKind::boundary: return SegmentKind::boundary;
+  }
+  return SegmentKind::contact;
+}
 /// What a body end touches.
 enum class Attach : std::uint8_t { free, boundary, body };
 

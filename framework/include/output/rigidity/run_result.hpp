@@ -85,14 +85,17 @@ struct SnapshotSample {
   double value;
 };
 
-enum class FrontKind { shock, contact, rarefaction, interface, boundary };
-[[nodiscard]] constexpr const char* to_string(FrontKind k) {
+/// What a line of the x–t diagram is (fronts.csv's `kind`): a shock, a contact (a jump that
+/// moves with the characteristics: every wave of a linearly degenerate material), a step of a
+/// rarefaction fan (or the fan's edge), a material interface, or a body's end.
+enum class SegmentKind { shock, contact, rarefaction, interface, boundary };
+[[nodiscard]] constexpr const char* to_string(SegmentKind k) {
   switch (k) {
-    case FrontKind::shock: return "shock";
-    case FrontKind::contact: return "contact";
-    case FrontKind::rarefaction: return "rarefaction";
-    case FrontKind::interface: return "interface";
-    case FrontKind::boundary: return "boundary";
+    case SegmentKind::shock: return "shock";
+    case SegmentKind::contact: return "contact";
+    case SegmentKind::rarefaction: return "rarefaction";
+    case SegmentKind::interface: return "interface";
+    case SegmentKind::boundary: return "boundary";
   }
   return "?";
 }
@@ -100,7 +103,7 @@ enum class FrontKind { shock, contact, rarefaction, interface, boundary };
 /// A straight piece of a front's world line in the lab x–t plane.
 struct FrontSegment {
   double t0, x0, t1, x1;
-  FrontKind kind;
+  SegmentKind kind;
   int family;  ///< -1 left-moving (C-), +1 right-moving (C+), 0 neither
 };
 
