@@ -208,14 +208,6 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   if (na.kind != NodeKind::front || nb.kind != NodeKind::front) return false;
   InPlace c;
   if (!cross_in_place(a, b, t, c)) return false;
-  const Node& before = nodes_[na.prev];
-  const Node& after = nodes_[nb.next];
-  const Material* m = before.right.material;
-  const bool degenerate = m->linearly_degenerate();
-  const State& left = before.right.state;
-  const State& right = nb.right.state;
-  const double X = c.X;
-  const State& star = c.star;
 
   hand_on_in_place(a, b, t, c);
 
@@ -227,40 +219,71 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   record_segment(na, t);
   record_segment(nb, t);
   if (c.held_back) {
-    ledger_.book_defect(
-        c.strength[0] *
-        std::min(piece_length(na.piece), std::abs(speeds_of(before.right, -1).lagrangian) * (scene_.t_end - t)));
-    ++suppressed_;
-    const int keep_before = na.prev;
-    account_front_end(a, t);  // its shock books close while its neighbours are still its own
-    link(keep_before, b);
-    kill_node(a, t);
-    ledger_.lose(c.carried[0]);  // the C− wave held back (its strength is booked above)
-    nodes_[b].carried = c.carried[1];
-    nodes_[b].smooth = c.smooth_in.out(1);
-    nodes_[b].kink = 0.0;
-    nodes_[b].offset = 0.0;
-    set_front(b, +1, c.kinds[1], *m, left, right, t, X, x, c.off_curve[1], c.born[1], c.strength[1]);
-    schedule_meet(keep_before);
-    schedule_meet(b);
+    hold_back_in_place(a, b, c, x, t);
     return true;
   }
   account_front_end(a, t);
   account_front_end(b, t);
   result_.stats.fronts += 2;
+  set_crossed_fronts(a, b, c, x, t);
+  schedule_meet(na.prev);
+  schedule_meets(a, b);
+  merge_after_crossing(a, b, c.X, t);
+  return true;
+}
+
+void Tracker::hold_back_in_place(int a, int b, const InPlace& c, double x, double t) {
+  const Node& na = nodes_[a];
+  const Node& before = nodes_[na.prev];
+  const Material* m = before.right.material;
+  const State& left = before.right.state;
+  const State& right = nodes_[b].right.state;
+  ledger_.book_defect(c.strength[0] * std::min(piece_length(na.piece),
+                                               std::abs(speeds_of(before.right, -1).lagrangian) * (scene_.t_end - t)));
+  ++suppressed_;
+  const int keep_before = na.prev;
+  account_front_end(a, t);  // its shock books close while its neighbours are still its own
+  link(keep_before, b);
+  kill_node(a, t);
+  ledger_.lose(c.carried[0]);  // the C− wave held back (its strength is booked above)
+  nodes_[b].carried = c.carried[1];
+  nodes_[b].smooth = c.smooth_in.out(1);
+  nodes_[b].kink = 0.0;
+  nodes_[b].offset = 0.0;
+  set_front(b, +1, c.kinds[1], *m, left, right, t, c.X, x, c.off_curve[1], c.born[1], c.strength[1]);
+  schedule_meet(keep_before);
+  schedule_meet(b);
+}
+
+Region Tracker::crossing_star_region(int a, int b, const InPlace& c) const {
+  const Region& left = nodes_[nodes_[a].prev].right;
+  const Region& right = nodes_[b].right;
   // The star's Ψ is at hand; in a linearly degenerate material its C− speeds are those of
   // `left` (J+ is the same) and its C+ speeds those of `right` (J− is), and so are the
   // speeds of the two fronts.
-  Region star_region{m, star};
+  Region star_region{left.material, c.star};
   star_region.psi = c.psi_star;
-  if (degenerate) {
-    star_region.speeds[0] = speeds_of(before.right, -1);
-    star_region.speeds[1] = speeds_of(nb.right, +1);
+  if (left.material->linearly_degenerate()) {
+    star_region.speeds[0] = speeds_of(left, -1);
+    star_region.speeds[1] = speeds_of(right, +1);
   } else if (c.converged) {
     // A fan step's curve was asked for its speeds at the star (to round-off) already.
     star_region.speeds[0] = c.star_speeds[0];
     star_region.speeds[1] = c.star_speeds[1];
   }
+  return star_region;
+}
+
+void Tracker::set_crossed_fronts(int a, int b, const InPlace& c, double x, double t) {
+  Node& na = nodes_[a];
+  Node& nb = nodes_[b];
+  const Node& before = nodes_[na.prev];
+  const Material* m = before.right.material;
+  const bool degenerate = m->linearly_degenerate();
+  const State& left = before.right.state;
+  const State& right = nb.right.state;
+  const State& star = c.star;
+  Region star_region = crossing_star_region(a, b, c);
   // The laws at the outer states and the star, where the crossing's wave curves asked for them.
   const JumpLaws laws_minus[2] = {c.outer_laws[0], c.star_laws};
   const JumpLaws laws_plus[2] = {c.star_laws, c.outer_laws[1]};
@@ -286,9 +309,9 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   nb.offset = c.smooth_in.out(1) ? offset_plus : 0.0;
   na.smooth = c.smooth_in.out(0);
   nb.smooth = c.smooth_in.out(1);
-  set_front(a, -1, c.kinds[0], *m, left, star, t, X, x, c.off_curve[0], c.born[0], c.strength[0],
+  set_front(a, -1, c.kinds[0], *m, left, star, t, c.X, x, c.off_curve[0], c.born[0], c.strength[0],
             degenerate ? &star_region.speeds[0] : nullptr, laws_minus, at[0], at[1]);
-  set_front(b, +1, c.kinds[1], *m, star, right, t, X, x, c.off_curve[1], c.born[1], c.strength[1],
+  set_front(b, +1, c.kinds[1], *m, star, right, t, c.X, x, c.off_curve[1], c.born[1], c.strength[1],
             degenerate ? &star_region.speeds[1] : nullptr, laws_plus, at[1], at[2]);
   na.right = star_region;
   na.carried = c.carried[0];
@@ -298,9 +321,12 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     jump.kink = std::abs(jump.dXdt - jump_speed);
     jump.kink_dt = t - jump_since;
   }
-  schedule_meet(na.prev);
-  schedule_meets(a, b);
-  if (degenerate) {
+}
+
+void Tracker::merge_after_crossing(int a, int b, double X, double t) {
+  const Node& before = nodes_[nodes_[a].prev];
+  const Node& after = nodes_[nodes_[b].next];
+  if (before.right.material->linearly_degenerate()) {
     // The two new fronts sit together; the nearest others are `before` and `after`. A
     // front's walk for a merge stops at the first one whose distance times the front's
     // strength exceeds what a merge may cost (merge_nearby): asked here first, as it
@@ -314,7 +340,6 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     merge_neighbours(a, t);
     merge_neighbours(b, t);
   }
-  return true;
 }
 
 /// A front of family `family` between the states `left` and `right` of material m, leaving

@@ -486,6 +486,14 @@ class Tracker {
   /// c.smooth_in): each front's carried error goes with the wave of its family, a fan step's
   /// age goes on where it leaves as the only step of its family, else its error is booked.
   void hand_on_in_place(int a, int b, double t, InPlace& c);
+  /// A crossing in place whose C− wave is held back: a leaves with its strength booked, b joins the outer states.
+  void hold_back_in_place(int a, int b, const InPlace& c, double x, double t);
+  /// The region of c's star between the fronts a < b leave a crossing with: its Ψ, and its speeds where known.
+  [[nodiscard]] Region crossing_star_region(int a, int b, const InPlace& c) const;
+  /// Sets a and b on the C− and C+ waves leaving their crossing, the star between, with their books and kinks.
+  void set_crossed_fronts(int a, int b, const InPlace& c, double x, double t);
+  /// The two fronts leaving a crossing at label X merge where cheap (merge_nearby, or merge_neighbours).
+  void merge_after_crossing(int a, int b, double X, double t);
   int merge_neighbours(int id, double t);
   bool merge_across(int p, int q, double t);
   /// Puts merge_across's result in place: p and q leave, one front of their family enters at
