@@ -65,6 +65,29 @@ void Tracker::schedule_meets(int a, int b) {
 /// Returns false (doing nothing) when the full Riemann problem is needed: a crowd, a strong
 /// shock, a fan to split, cavitation.
 bool Tracker::cross_in_place(int a, int b, double t, InPlace& c) {
+  CrossingSides s;
+  if (!two_rarefaction_star(a, b, t, s, c)) return false;
+  const Material* m = s.left->material;
+  const State& left = s.left->state;
+  const State& right = s.right->state;
+
+  // The outgoing waves: kinds, strengths, and how far each is from its wave curve.
+  // J− across the C− front, J+ across the C+ front (for a linearly degenerate material,
+  // those the fronts brought in, passed on).
+  c.strength[0] = std::abs(s.j_minus - (left.rapidity - s.psi_left));
+  c.strength[1] = std::abs(right.rapidity + s.psi_right - s.j_plus);
+  if (m->linearly_degenerate()) {
+    if (same_state(c.star, left) || same_state(c.star, right)) return false;  // a wave vanishes
+  } else if (!star_on_curves(a, b, s, c)) {
+    return false;
+  }
+
+  if (c.held_back && !(std::abs(label_jump_speeds(*m, left, right, +1).lab) < 1.0))
+    return false;  // no faster than light
+  return true;
+}
+
+bool Tracker::two_rarefaction_star(int a, int b, double t, CrossingSides& s, InPlace& c) {
   const Node& na = nodes_[a];
   const Node& nb = nodes_[b];
   const Node& before = nodes_[na.prev];
@@ -77,12 +100,15 @@ bool Tracker::cross_in_place(int a, int b, double t, InPlace& c) {
   const double X = c.X;
   const double tolerance = 8.0 * kEps * (1.0 + std::abs(X));
   if (before.X_at(t) >= X - tolerance || after.X_at(t) <= X + tolerance) return false;  // a crowd: resolve in full
+  s.left = &before.right;
+  s.right = &nb.right;
   const State& left = before.right.state;
   const State& right = nb.right.state;
-  const double psi_left = psi_of(before.right), psi_right = psi_of(nb.right);
-  const double j_plus = left.rapidity + psi_left;
-  const double j_minus = right.rapidity - psi_right;
-  const double psi_star = 0.5 * (j_plus - j_minus);
+  s.psi_left = psi_of(before.right);
+  s.psi_right = psi_of(nb.right);
+  s.j_plus = left.rapidity + s.psi_left;
+  s.j_minus = right.rapidity - s.psi_right;
+  const double psi_star = 0.5 * (s.j_plus - s.j_minus);
   if (!(psi_star < m->psi_max())) return false;
   if (m->cavitation_pressure() > -kInf) {
     const Solved<double> parting = memo_->parting_psi(*m);
@@ -90,83 +116,98 @@ bool Tracker::cross_in_place(int a, int b, double t, InPlace& c) {
   }
   const Solved<Stretch> star_stretch = memo_->stretch_at_psi(*m, psi_star);
   if (!star_stretch.ok() || !representable(star_stretch.value)) return false;  // resolved in full, and reported
-  c.star = State{0.5 * (j_plus + j_minus), star_stretch.value};
+  c.star = State{0.5 * (s.j_plus + s.j_minus), star_stretch.value};
   c.psi_star = psi_star;
+  return true;
+}
 
-  // The outgoing waves: kinds, strengths, and how far each is from its wave curve.
-  // J− across the C− front, J+ across the C+ front (for a linearly degenerate material,
-  // those the fronts brought in, passed on).
-  c.strength[0] = std::abs(j_minus - (left.rapidity - psi_left));
-  c.strength[1] = std::abs(right.rapidity + psi_right - j_plus);
-  if (degenerate) {
-    if (same_state(c.star, left) || same_state(c.star, right)) return false;  // a wave vanishes
-  } else {
-    // The star where the two wave curves meet, to round-off, or as soon as they miss each
-    // other by less than star_mismatch_ (then booked on both fronts like a shock held off
-    // its Hugoniot: a weak crossing often takes the two-rarefaction star as it is).
-    CrossingEnds ends{CurveEnd{left, psi_left, speeds_of(before.right, -1).lagrangian, {}},
-                      CurveEnd{right, psi_right, speeds_of(nb.right, +1).lagrangian, {}}};
-    // Two waves crossing head-on pass through each other nearly unchanged: each outgoing
-    // wave carries the jump in the other family's invariant its incoming self had (zero
-    // for a fan step; a shock's, third order in its strength, off the integral curve).
-    // The star from those jumps misses the exact one by a fourth-order term where the
-    // two-rarefaction star misses it by a third-order one.
-    State guess = c.star;
-    if (na.family > 0 && nb.family < 0) {
-      const State& middle = na.right.state;
-      const double psi_middle = psi_of(na.right);
-      const double carried_plus = (right.rapidity + psi_right) - (middle.rapidity + psi_middle);  // J+ across b
-      const double carried_minus = (middle.rapidity - psi_middle) - (left.rapidity - psi_left);   // J− across a
-      if (carried_plus != 0.0 || carried_minus != 0.0) {
-        const Solved<Stretch> s = m->stretch_at_psi(0.5 * ((j_plus + carried_plus) - (j_minus - carried_minus)));
-        if (s.ok() && representable(s.value)) guess.stretch = s.value;
-      }
-    }
-    const Solved<SameMaterialStar> found = same_material_star(*m, ends, guess, star_mismatch_);
-    if (!found.ok()) return false;
-    c.star = found.value.state;
-    c.converged = found.value.converged;
-    c.star_speeds[0] = found.value.speeds[0];
-    c.star_speeds[1] = found.value.speeds[1];
-    c.outer_laws[0] = ends.left.laws;
-    c.outer_laws[1] = ends.right.laws;
-    c.star_laws = found.value.laws;
-    c.psi_star = m->riemann_psi(c.star.stretch);
-    bool shock[2] = {found.value.shock[0], found.value.shock[1]};
-    for (int k = 0; k < 2; ++k) c.off_curve[k] = shock[k] || !found.value.converged ? found.value.off[k] : 0.0;
-    c.strength[0] = std::abs((c.star.rapidity - left.rapidity) - (c.psi_star - psi_left));
-    c.strength[1] = std::abs((right.rapidity - c.star.rapidity) + (psi_right - c.psi_star));
-    if (c.strength[0] < policy_.weak_merging() && na.family == nb.family) {
-      c.held_back = true;
-      c.star = left;
-      c.psi_star = psi_left;
-      // The C+ wave now joins `left` to `right`: its curve through `right` at left's stretch.
-      shock[1] = wave_is_shock(*m, right, c.star.stretch, +1);
-      c.off_curve[1] = 0.0;
-      if (shock[1]) {
-        const Solved<double> exact = hugoniot_rapidity(*m, right, c.star.stretch, +1);
-        if (!exact.ok()) return false;
-        c.off_curve[1] = std::abs(exact.value - c.star.rapidity);
-      }
-      c.strength[1] = std::abs((right.rapidity - left.rapidity) + (psi_right - psi_left));
-    }
-    for (int k = c.held_back ? 1 : 0; k < 2; ++k) {
-      const State& outer = k == 0 ? left : right;
-      if (same_state(outer, c.star)) return false;
-      if (shock[k]) {
-        c.kinds[k] = FrontKind::shock;
-        if (!(c.off_curve[k] < policy_.weak_wave())) return false;
-      } else {
-        c.kinds[k] = FrontKind::rarefaction;
-        const double span = std::abs(c.psi_star - (k == 0 ? psi_left : psi_right));
-        // A new fan is split in steps; a step of a smooth wave goes on as one step.
-        if (span >= 2.0 * policy_.fan_step() && !na.smooth && !nb.smooth) return false;
-      }
+State Tracker::head_on_guess(int a, int b, const CrossingSides& s, const State& star) {
+  // Two waves crossing head-on pass through each other nearly unchanged: each outgoing
+  // wave carries the jump in the other family's invariant its incoming self had (zero
+  // for a fan step; a shock's, third order in its strength, off the integral curve).
+  // The star from those jumps misses the exact one by a fourth-order term where the
+  // two-rarefaction star misses it by a third-order one.
+  const Node& na = nodes_[a];
+  const Material* m = s.left->material;
+  const State& left = s.left->state;
+  const State& right = s.right->state;
+  State guess = star;
+  if (na.family > 0 && nodes_[b].family < 0) {
+    const State& middle = na.right.state;
+    const double psi_middle = psi_of(na.right);
+    const double carried_plus = (right.rapidity + s.psi_right) - (middle.rapidity + psi_middle);  // J+ across b
+    const double carried_minus = (middle.rapidity - psi_middle) - (left.rapidity - s.psi_left);   // J− across a
+    if (carried_plus != 0.0 || carried_minus != 0.0) {
+      const Solved<Stretch> st = m->stretch_at_psi(0.5 * ((s.j_plus + carried_plus) - (s.j_minus - carried_minus)));
+      if (st.ok() && representable(st.value)) guess.stretch = st.value;
     }
   }
+  return guess;
+}
 
-  if (c.held_back && !(std::abs(label_jump_speeds(*m, left, right, +1).lab) < 1.0))
-    return false;  // no faster than light
+bool Tracker::star_on_curves(int a, int b, const CrossingSides& s, InPlace& c) {
+  const Material* m = s.left->material;
+  const State& left = s.left->state;
+  const State& right = s.right->state;
+  // The star where the two wave curves meet, to round-off, or as soon as they miss each
+  // other by less than star_mismatch_ (then booked on both fronts like a shock held off
+  // its Hugoniot: a weak crossing often takes the two-rarefaction star as it is).
+  CrossingEnds ends{CurveEnd{left, s.psi_left, speeds_of(*s.left, -1).lagrangian, {}},
+                    CurveEnd{right, s.psi_right, speeds_of(*s.right, +1).lagrangian, {}}};
+  const State guess = head_on_guess(a, b, s, c.star);
+  const Solved<SameMaterialStar> found = same_material_star(*m, ends, guess, star_mismatch_);
+  if (!found.ok()) return false;
+  c.star = found.value.state;
+  c.converged = found.value.converged;
+  c.star_speeds[0] = found.value.speeds[0];
+  c.star_speeds[1] = found.value.speeds[1];
+  c.outer_laws[0] = ends.left.laws;
+  c.outer_laws[1] = ends.right.laws;
+  c.star_laws = found.value.laws;
+  c.psi_star = m->riemann_psi(c.star.stretch);
+  bool shock[2] = {found.value.shock[0], found.value.shock[1]};
+  for (int k = 0; k < 2; ++k) c.off_curve[k] = shock[k] || !found.value.converged ? found.value.off[k] : 0.0;
+  c.strength[0] = std::abs((c.star.rapidity - left.rapidity) - (c.psi_star - s.psi_left));
+  c.strength[1] = std::abs((right.rapidity - c.star.rapidity) + (s.psi_right - c.psi_star));
+  if (c.strength[0] < policy_.weak_merging() && nodes_[a].family == nodes_[b].family) {
+    if (!hold_back_minus(s, shock, c)) return false;
+  }
+  return outgoing_kinds(a, b, s, shock, c);
+}
+
+bool Tracker::hold_back_minus(const CrossingSides& s, bool shock[2], InPlace& c) {
+  const Material* m = s.left->material;
+  const State& left = s.left->state;
+  const State& right = s.right->state;
+  c.held_back = true;
+  c.star = left;
+  c.psi_star = s.psi_left;
+  // The C+ wave now joins `left` to `right`: its curve through `right` at left's stretch.
+  shock[1] = wave_is_shock(*m, right, c.star.stretch, +1);
+  c.off_curve[1] = 0.0;
+  if (shock[1]) {
+    const Solved<double> exact = hugoniot_rapidity(*m, right, c.star.stretch, +1);
+    if (!exact.ok()) return false;
+    c.off_curve[1] = std::abs(exact.value - c.star.rapidity);
+  }
+  c.strength[1] = std::abs((right.rapidity - left.rapidity) + (s.psi_right - s.psi_left));
+  return true;
+}
+
+bool Tracker::outgoing_kinds(int a, int b, const CrossingSides& s, const bool shock[2], InPlace& c) const {
+  for (int k = c.held_back ? 1 : 0; k < 2; ++k) {
+    const State& outer = k == 0 ? s.left->state : s.right->state;
+    if (same_state(outer, c.star)) return false;
+    if (shock[k]) {
+      c.kinds[k] = FrontKind::shock;
+      if (!(c.off_curve[k] < policy_.weak_wave())) return false;
+    } else {
+      c.kinds[k] = FrontKind::rarefaction;
+      const double span = std::abs(c.psi_star - (k == 0 ? s.psi_left : s.psi_right));
+      // A new fan is split in steps; a step of a smooth wave goes on as one step.
+      if (span >= 2.0 * policy_.fan_step() && !nodes_[a].smooth && !nodes_[b].smooth) return false;
+    }
+  }
   return true;
 }
 

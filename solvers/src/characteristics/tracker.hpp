@@ -482,6 +482,22 @@ class Tracker {
   /// material: a crowd at the point, a wave that vanishes or would part the body, a new fan
   /// to split, a star off its curves by more than the threshold, a wave faster than light.
   bool cross_in_place(int a, int b, double t, InPlace& c);
+  /// The outer regions of a crossing in place, their Ψ, and the invariants they bring (J+ left, J− right).
+  struct CrossingSides {
+    const Region* left = nullptr;
+    const Region* right = nullptr;
+    double psi_left = 0.0, psi_right = 0.0, j_plus = 0.0, j_minus = 0.0;
+  };
+  /// The two-rarefaction star of fronts a < b at t (c.X, c.star, c.psi_star), or false where it is no simple crossing.
+  bool two_rarefaction_star(int a, int b, double t, CrossingSides& s, InPlace& c);
+  /// The first guess of a genuinely nonlinear crossing's star: each wave passed on with the other invariant's jump.
+  State head_on_guess(int a, int b, const CrossingSides& s, const State& star);
+  /// The star where the wave curves meet, the waves' strengths and distances off them, or false where none serves.
+  bool star_on_curves(int a, int b, const CrossingSides& s, InPlace& c);
+  /// Holds back a C− wave weaker than the threshold (the star: the left state); false where no C+ shock is found.
+  bool hold_back_minus(const CrossingSides& s, bool shock[2], InPlace& c);
+  /// The kinds of the waves leaving a crossing, or false where one vanishes, is off its curve or is a fan to split.
+  bool outgoing_kinds(int a, int b, const CrossingSides& s, const bool shock[2], InPlace& c) const;
   /// What fronts a and b hand on to the waves leaving their crossing (c.born, c.carried,
   /// c.smooth_in): each front's carried error goes with the wave of its family, a fan step's
   /// age goes on where it leaves as the only step of its family, else its error is booked.
