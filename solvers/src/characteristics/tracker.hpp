@@ -370,6 +370,14 @@ class Tracker {
   [[nodiscard]] BoundParts error_bound_parts(double t_end) const;
   /// The solver numbers of the bound, and the warnings where it is above the tolerance.
   void report_error_bound(const BoundParts& bound);
+  /// The error bound and its parts as solver numbers, with the counts and resolutions that made them.
+  void report_bound_numbers(const BoundParts& bound);
+  /// Where smooth waves' steps decided cracks: the time from which the result is qualitative, and a warning.
+  void report_qualitative();
+  /// Warns where a spray made the run resolve waves more coarsely than the tolerance; whether it did.
+  bool warn_spray_coarsened();
+  /// Warns that the bound is above the tolerance: which part holds it up, and what would lower it.
+  void warn_bound_above_tolerance(const BoundParts& bound, bool spray_coarsened);
   /// Energy and momentum at t_end and what the books say made their changes.
   void report_conservation(double t_end);
   /// Each body's pieces at t_end: extent, energy, momentum, mean velocity.
