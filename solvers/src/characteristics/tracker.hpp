@@ -654,6 +654,31 @@ class Tracker {
   /// wave came before, the staircase's, σ/4 of the width.
   void enter_light(std::deque<LightFront>& queue, const Node& f, double t, bool lattice);
   bool merge_light(int piece, int family, double t);
+  /// A merge of a light piece's two newest fronts of one family, as merge_light works it out.
+  struct LightMerge {
+    /// A lab extent (from, to: away from the new front's end), the other family's invariant there and this one's now.
+    struct Part {
+      double from, to, j_other, j_old;
+    };
+    int family = 0;
+    /// The family's invariant between the two fronts, ahead of the older one and behind the newer one.
+    double j_between = 0.0, j_near_old = 0.0, j_near_new = 0.0;
+    double x_old = 0.0, x_new = 0.0;     ///< the two fronts' lab positions
+    double x_limit = 0.0, x_stop = 0.0;  ///< how far the merged front may go, and how far the parts reach
+    std::vector<Part> parts;
+    /// Labels per lab length of each part: now, with j_near_new, with j_near_old.
+    std::vector<double> density_old, density_new, density_near_old;
+    double place = kInf, swept_in_split = 0.0;  ///< the merged front's lab position, and how far into its part
+    std::size_t split = 0;                      ///< the part it lies in
+  };
+  /// The parts of a light merge: the lab extents the merged front may sweep, split at the other family's fronts.
+  void light_merge_parts(int piece, double t, LightMerge& g) const;
+  /// The place of a light merge that keeps the piece's natural length, or false where there is none.
+  bool light_merge_place(int piece, LightMerge& g) const;
+  /// The L1 error of a light merge: |δJ| of its family times the natural length it changes over.
+  [[nodiscard]] double light_merge_cost(const LightMerge& g) const;
+  /// Puts a light merge in place: the older front takes the newer one's books and moves to the place; the newer leaves.
+  void apply_merge_light(int piece, const LightMerge& g, double cost, double t);
   [[nodiscard]] State light_state(const Material& m, double j_plus, double j_minus) const;
   // ---- lattice pieces (lattice.cpp) ------------------------------------------------------
   bool make_lattice(int piece, double t);
