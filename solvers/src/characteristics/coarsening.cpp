@@ -215,16 +215,12 @@ void Tracker::apply_merge_across(int p, int q, std::size_t split, double X_merge
 /// contact) multiply for ever, since same-family fronts are kept apart by the other
 /// family's. Returns true if merged.
 bool Tracker::merge_across(int p, int q, double t) {
-  const Material& m = *nodes_[p].right.material;
   const int f = nodes_[p].family;
   const int left_of_p = nodes_[p].prev, right_of_q = nodes_[q].next;
   if (left_of_p == kNone || right_of_q == kNone) return false;
   const double limit = policy_.merge_limit();
   // No merge costs less than the weaker front times the distance: most are refused here.
   if (std::min(nodes_[p].strength, nodes_[q].strength) * (nodes_[q].X_at(t) - nodes_[p].X_at(t)) > limit) return false;
-  const auto invariant = [&](const State& st, int family) { return st.rapidity + family * memo_->psi(m, st.stretch); };
-  const State before = nodes_[left_of_p].right.state;
-  const State after_q = nodes_[q].right.state;
   const auto region_invariant = [&](const Region& r) { return r.state.rapidity + f * psi_of(r); };
   const double j_before = region_invariant(nodes_[left_of_p].right), j_after_p = region_invariant(nodes_[p].right);
   const double j_after_q = region_invariant(nodes_[q].right);
@@ -240,6 +236,28 @@ bool Tracker::merge_across(int p, int q, double t) {
   const double estimate =
       (sigma_p * sigma_q > 0.0 ? 2.0 * sigma_p * sigma_q / (sigma_p + sigma_q) : 2.0 * weaker) * (Xq - Xp);
   if (estimate > kMergeEstimateMargin * limit) return false;
+  bool extend_left = false;
+  if (!merge_segments(p, q, j_before, j_after_p, j_after_q, extend_left, t)) return false;
+  double X_merged = kInf;
+  std::size_t split = 0;
+  if (!merged_label(X_merged, split)) return false;
+  const double cost = merge_across_cost(split, X_merged, j_before, j_after_q);
+  if (cost > limit) return false;
+
+  // p and q leave; one front of family f enters at X̄.
+  apply_merge_across(p, q, split, X_merged, cost, j_before, j_after_q, extend_left, t);
+  return true;
+}
+
+bool Tracker::merge_segments(int p, int q, double j_before, double j_after_p, double j_after_q, bool& extend_left,
+                             double t) {
+  const Material& m = *nodes_[p].right.material;
+  const int f = nodes_[p].family;
+  const int left_of_p = nodes_[p].prev, right_of_q = nodes_[q].next;
+  const auto invariant = [&](const State& st, int family) { return st.rapidity + family * memo_->psi(m, st.stretch); };
+  const State before = nodes_[left_of_p].right.state;
+  const State after_q = nodes_[q].right.state;
+  const double Xp = nodes_[p].X_at(t), Xq = nodes_[q].X_at(t);
   const auto with_invariant = [&](const State& st, double j_f) -> Solved<State> {
     const double j_other = invariant(st, -f);
     const double j_plus = f > 0 ? j_f : j_other, j_minus = f > 0 ? j_other : j_f;
@@ -259,8 +277,7 @@ bool Tracker::merge_across(int p, int q, double t) {
     segments_.push_back(MergeSegment{a, b, old, j_old, left.value, right.value, right_node});
     return true;
   };
-  const bool extend_left =
-      nodes_[left_of_p].kind == NodeKind::front && nodes_[nodes_[left_of_p].prev].right.material == &m;
+  extend_left = nodes_[left_of_p].kind == NodeKind::front && nodes_[nodes_[left_of_p].prev].right.material == &m;
   const bool extend_right = nodes_[right_of_q].kind == NodeKind::front && nodes_[right_of_q].right.material == &m;
   if (extend_left && !add(nodes_[left_of_p].X_at(t), Xp, before, j_before, kNone)) return false;
   double a = Xp;
@@ -273,12 +290,14 @@ bool Tracker::merge_across(int p, int q, double t) {
   }
   if (extend_right && !add(Xq, nodes_[right_of_q].X_at(t), after_q, j_after_q, right_of_q)) return false;
   if (!extend_right) segments_.back().right_node = right_of_q;
+  return true;
+}
+
+bool Tracker::merged_label(double& X_merged, std::size_t& split) const {
   // Lab length change as X̄ moves right from the first edge: all segments on their right
   // states at first, each turning to its left state as X̄ passes it.
   double change = 0.0;
   for (const MergeSegment& g : segments_) change += (label_density(g.right) - label_density(g.old)) * (g.b - g.a);
-  double X_merged = kInf;
-  std::size_t split = 0;
   for (std::size_t i = 0; i < segments_.size(); ++i) {
     const MergeSegment& g = segments_[i];
     const double rate = label_density(g.left) - label_density(g.right);
@@ -292,18 +311,17 @@ bool Tracker::merge_across(int p, int q, double t) {
   }
   if (!std::isfinite(X_merged)) return false;
   const double margin = 64.0 * kEps * (1.0 + std::abs(X_merged));
-  if (X_merged <= segments_.front().a + margin || X_merged >= segments_.back().b - margin) return false;
+  return !(X_merged <= segments_.front().a + margin || X_merged >= segments_.back().b - margin);
+}
+
+double Tracker::merge_across_cost(std::size_t split, double X_merged, double j_before, double j_after_q) const {
   double cost = 0.0;
   for (std::size_t i = 0; i < segments_.size(); ++i) {
     const MergeSegment& g = segments_[i];
     const double left_part = i < split ? g.b - g.a : i == split ? X_merged - g.a : 0.0;
     cost += std::abs(j_before - g.j_old) * left_part + std::abs(j_after_q - g.j_old) * (g.b - g.a - left_part);
   }
-  if (cost > limit) return false;
-
-  // p and q leave; one front of family f enters at X̄.
-  apply_merge_across(p, q, split, X_merged, cost, j_before, j_after_q, extend_left, t);
-  return true;
+  return cost;
 }
 
 /// Looks for a front of the same family within a few nodes of `id`, across fronts of the

@@ -536,6 +536,12 @@ class Tracker {
   };
   std::vector<MergeSegment> segments_;
   double merge_cost(int p, int q, double t, double* X_merged) const;
+  /// segments_ of a merge across of p < q: the regions X̄ may lie in, with their states on either side of it.
+  bool merge_segments(int p, int q, double j_before, double j_after_p, double j_after_q, bool& extend_left, double t);
+  /// The label X̄ in segments_ that keeps the lab length, and its segment; false where none lies inside them.
+  bool merged_label(double& X_merged, std::size_t& split) const;
+  /// The L1 error of a merge across at X̄: each segment's f-invariant change times the length it changes over.
+  [[nodiscard]] double merge_across_cost(std::size_t split, double X_merged, double j_before, double j_after_q) const;
   void set_front(int id, int family, FrontKind kind, const Material& m, const State& left, const State& right, double t,
                  double X, double x, double off_hugoniot, double born, double strength,
                  const FrontSpeeds* known = nullptr, const JumpLaws* laws = nullptr,
