@@ -48,87 +48,100 @@ double Tracker::merge_cost(int p, int q, double t, double* X_merged) const {
 int Tracker::merge_neighbours(int id, double t) {
   for (;;) {
     if (id == kNone || !nodes_[id].alive || nodes_[id].kind != NodeKind::front) return id;
-    int best_left = kNone;
     double best_cost = policy_.merge_limit();
-    for (int side = 0; side < 2; ++side) {
-      const int p = side == 0 ? nodes_[id].prev : id;
-      const int q = side == 0 ? id : nodes_[id].next;
-      if (p == kNone || q == kNone) continue;
-      const Node& np = nodes_[p];
-      const Node& nq = nodes_[q];
-      if (np.kind != NodeKind::front || nq.kind != NodeKind::front || np.family != nq.family) continue;
-      if (unsplit(p) || unsplit(q)) continue;  // a fan's wedge is no jump to move
-      const Region& L = nodes_[np.prev].right;
-      if (L.material != np.right.material || L.material != nq.right.material) continue;
-      if (std::min(np.strength, nq.strength) * (nq.X_at(t) - np.X_at(t)) > best_cost) continue;
-      // Two fan steps of one family expand the same way, and each carries 2|ΔΨ| in its own
-      // invariant: together they span the sum, which the merged step may not (below). Most
-      // neighbours are steps of one fan (each between one and two fan steps wide): refused
-      // here, before the curves are evaluated. The margin covers a step's distance from its
-      // curve (star_mismatch_) and round-off.
-      if (np.front_kind == FrontKind::rarefaction && nq.front_kind == FrontKind::rarefaction &&
-          0.5 * (np.strength + nq.strength) > 2.0 * policy_.fan_step() * (1.0 + 1e-9) + 2.0 * star_mismatch_)
-        continue;
-      const double cost = merge_cost(p, q, t, nullptr);
-      if (cost <= best_cost) {
-        best_cost = cost;
-        best_left = p;
-      }
-    }
+    const int best_left = cheapest_neighbour_merge(id, t, best_cost);
     if (best_left == kNone) return id;
-    double X = 0.0;
     const int p = best_left, q = nodes_[p].next;
-    const int family = nodes_[p].family;
     const Region L = nodes_[nodes_[p].prev].right;
     const Region R = nodes_[q].right;
-    const Material& m = *L.material;
-    const State& outer = family < 0 ? L.state : R.state;
-    const State& inner = family < 0 ? R.state : L.state;
     FrontKind kind = FrontKind::contact;
     double off = 0.0;
-    if (!m.linearly_degenerate()) {
-      if (same_state(outer, inner)) return id;
-      if (wave_is_shock(m, outer, inner.stretch, family)) {
-        kind = FrontKind::shock;
-        const Solved<double> exact = hugoniot_rapidity(m, outer, inner.stretch, family);
-        if (!exact.ok()) return id;
-        off = std::abs(exact.value - inner.rapidity);
-        if (!(off < policy_.weak_wave())) return id;
-      } else {
-        kind = FrontKind::rarefaction;
-        if (std::abs(m.riemann_psi(outer.stretch) - m.riemann_psi(inner.stretch)) >= 2.0 * policy_.fan_step())
-          return id;
-      }
-      if (!(std::abs(label_jump_speeds(m, L.state, R.state, family).lab) < 1.0)) return id;  // no faster than light
-    }
-    merge_cost(p, q, t, &X);
-    const double x = nodes_[p].x_at(t) + (X - nodes_[p].X_at(t)) * label_density(L.state);
-    const double strength_p = std::abs(wave_strength(m, L.state, nodes_[p].right.state, family));
-    const double strength_q = std::abs(wave_strength(m, nodes_[p].right.state, R.state, family));
-    const int kept = strength_p >= strength_q ? p : q;
-    const int gone = kept == p ? q : p;
-    nodes_[kept].smooth = nodes_[p].smooth && nodes_[q].smooth;
-    // The merged front carries both fronts' errors, what their fan steps booked, and the merge's.
-    double carried = nodes_[p].carried + nodes_[q].carried + ledger_.book_merge(best_cost);
-    for (int n : {p, q}) {
-      account_front_end(n, t);
-      if (nodes_[n].front_kind == FrontKind::rarefaction) carried += book_fan_error(n, t);
-      nodes_[n].carried = 0.0;
-    }
-    ++merged_;
-    record_segment(nodes_[kept], t);
-    close_defect(nodes_[kept], t);
-    nodes_[p].right = R;  // p's right region was the middle state
-    link(nodes_[gone].prev, nodes_[gone].next);
-    if (kept == q) nodes_[q].right = R;
-    kill_node(gone, t);
-    set_front(kept, family, kind, m, L.state, R.state, t, X, x, off, t,
-              std::abs(wave_strength(m, L.state, R.state, family)));
-    nodes_[kept].carried = carried;
-    if (nodes_[kept].prev != kNone) schedule_meet(nodes_[kept].prev);
-    schedule_meet(kept);
-    id = kept;
+    if (!merged_front_kind(*L.material, L.state, R.state, nodes_[p].family, kind, off)) return id;
+    id = apply_merge_neighbours(p, q, L, R, best_cost, kind, off, t);
   }
+}
+
+int Tracker::cheapest_neighbour_merge(int id, double t, double& best_cost) const {
+  int best_left = kNone;
+  for (int side = 0; side < 2; ++side) {
+    const int p = side == 0 ? nodes_[id].prev : id;
+    const int q = side == 0 ? id : nodes_[id].next;
+    if (p == kNone || q == kNone) continue;
+    const Node& np = nodes_[p];
+    const Node& nq = nodes_[q];
+    if (np.kind != NodeKind::front || nq.kind != NodeKind::front || np.family != nq.family) continue;
+    if (unsplit(p) || unsplit(q)) continue;  // a fan's wedge is no jump to move
+    const Region& L = nodes_[np.prev].right;
+    if (L.material != np.right.material || L.material != nq.right.material) continue;
+    if (std::min(np.strength, nq.strength) * (nq.X_at(t) - np.X_at(t)) > best_cost) continue;
+    // Two fan steps of one family expand the same way, and each carries 2|ΔΨ| in its own
+    // invariant: together they span the sum, which the merged step may not (below). Most
+    // neighbours are steps of one fan (each between one and two fan steps wide): refused
+    // here, before the curves are evaluated. The margin covers a step's distance from its
+    // curve (star_mismatch_) and round-off.
+    if (np.front_kind == FrontKind::rarefaction && nq.front_kind == FrontKind::rarefaction &&
+        0.5 * (np.strength + nq.strength) > 2.0 * policy_.fan_step() * (1.0 + 1e-9) + 2.0 * star_mismatch_)
+      continue;
+    const double cost = merge_cost(p, q, t, nullptr);
+    if (cost <= best_cost) {
+      best_cost = cost;
+      best_left = p;
+    }
+  }
+  return best_left;
+}
+
+bool Tracker::merged_front_kind(const Material& m, const State& left, const State& right, int family, FrontKind& kind,
+                                double& off) const {
+  if (m.linearly_degenerate()) return true;
+  const State& outer = family < 0 ? left : right;
+  const State& inner = family < 0 ? right : left;
+  if (same_state(outer, inner)) return false;
+  if (wave_is_shock(m, outer, inner.stretch, family)) {
+    kind = FrontKind::shock;
+    const Solved<double> exact = hugoniot_rapidity(m, outer, inner.stretch, family);
+    if (!exact.ok()) return false;
+    off = std::abs(exact.value - inner.rapidity);
+    if (!(off < policy_.weak_wave())) return false;
+  } else {
+    kind = FrontKind::rarefaction;
+    if (std::abs(m.riemann_psi(outer.stretch) - m.riemann_psi(inner.stretch)) >= 2.0 * policy_.fan_step()) return false;
+  }
+  return std::abs(label_jump_speeds(m, left, right, family).lab) < 1.0;  // no faster than light
+}
+
+int Tracker::apply_merge_neighbours(int p, int q, const Region& L, const Region& R, double cost, FrontKind kind,
+                                    double off, double t) {
+  const int family = nodes_[p].family;
+  const Material& m = *L.material;
+  double X = 0.0;
+  merge_cost(p, q, t, &X);
+  const double x = nodes_[p].x_at(t) + (X - nodes_[p].X_at(t)) * label_density(L.state);
+  const double strength_p = std::abs(wave_strength(m, L.state, nodes_[p].right.state, family));
+  const double strength_q = std::abs(wave_strength(m, nodes_[p].right.state, R.state, family));
+  const int kept = strength_p >= strength_q ? p : q;
+  const int gone = kept == p ? q : p;
+  nodes_[kept].smooth = nodes_[p].smooth && nodes_[q].smooth;
+  // The merged front carries both fronts' errors, what their fan steps booked, and the merge's.
+  double carried = nodes_[p].carried + nodes_[q].carried + ledger_.book_merge(cost);
+  for (int n : {p, q}) {
+    account_front_end(n, t);
+    if (nodes_[n].front_kind == FrontKind::rarefaction) carried += book_fan_error(n, t);
+    nodes_[n].carried = 0.0;
+  }
+  ++merged_;
+  record_segment(nodes_[kept], t);
+  close_defect(nodes_[kept], t);
+  nodes_[p].right = R;  // p's right region was the middle state
+  link(nodes_[gone].prev, nodes_[gone].next);
+  if (kept == q) nodes_[q].right = R;
+  kill_node(gone, t);
+  set_front(kept, family, kind, m, L.state, R.state, t, X, x, off, t,
+            std::abs(wave_strength(m, L.state, R.state, family)));
+  nodes_[kept].carried = carried;
+  if (nodes_[kept].prev != kNone) schedule_meet(nodes_[kept].prev);
+  schedule_meet(kept);
+  return kept;
 }
 
 void Tracker::apply_merge_across(int p, int q, std::size_t split, double X_merged, double cost, double j_before,

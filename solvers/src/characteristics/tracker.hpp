@@ -519,6 +519,14 @@ class Tracker {
   /// The two fronts leaving a crossing at label X merge where cheap (merge_nearby, or merge_neighbours).
   void merge_after_crossing(int a, int b, double X, double t);
   int merge_neighbours(int id, double t);
+  /// The left one of the cheapest pair of id and a neighbour to merge costing at most best_cost (lowered to its cost).
+  int cheapest_neighbour_merge(int id, double t, double& best_cost) const;
+  /// The kind of the front that joins left to right, and how far off its Hugoniot; false where no one front may.
+  bool merged_front_kind(const Material& m, const State& left, const State& right, int family, FrontKind& kind,
+                         double& off) const;
+  /// Puts neighbours p < q merged in place (p's left region L, q's right R): the stronger stays; returns it.
+  int apply_merge_neighbours(int p, int q, const Region& L, const Region& R, double cost, FrontKind kind, double off,
+                             double t);
   bool merge_across(int p, int q, double t);
   /// Puts merge_across's result in place: p and q leave, one front of their family enters at
   /// X_merged (in segments_[split]), the regions between take their new states, the nodes
