@@ -938,19 +938,6 @@ void Tracker::settle_and_schedule(const Meeting& g, int interface, bool parted_i
 
 int Tracker::link_waves(const Meeting& g, const RiemannSolution& sol, int droplet, double XL, bool smooth_in,
                         int& interface, bool& parted_inside, double t) {
-  const Material* mL = g.left_region.material;
-  const Material* mR = g.right_region.material;
-  WaveStates& wl = wave_left_;
-  WaveStates& wr = wave_right_;
-
-  // Link: [before] − fronts [centre] + fronts [right state holder].
-  // The region right of the C− fronts is the left star state, left of the C+ fronts the right star state.
-  auto states_of_left = [&](std::size_t k) -> Region { return Region{mL, wl.states[k + 1]}; };
-  auto states_of_right = [&](std::size_t k, std::size_t m) -> Region {
-    // C+ fronts listed left to right: front k separates states m-k and m-k-1.
-    return Region{mR, wr.states[m - k - 1]};
-  };
-
   parted_inside = !g.left_boundary && !g.right_boundary && sol.parted && g.contact_left == kNone;
   if (!g.left_boundary && !g.right_boundary && sol.parted && g.contact_left != kNone) {
     // Two bodies in contact separate.
@@ -958,67 +945,80 @@ int Tracker::link_waves(const Meeting& g, const RiemannSolution& sol, int drople
     set_attach(g.contact_right, Attach::free, kNone, t);
     event(t, "separation", g.x, {piece_body_name(g.left_piece), piece_body_name(g.right_piece)});
   }
+  // Link: [before] − fronts [centre] + fronts [right state holder]. The region right of the
+  // C− fronts is the left star state, left of the C+ fronts the right star state.
+  const int cursor = link_left_waves(g, droplet);
+  int right_holder = right_state_holder(g, interface, droplet, cursor);
+  if (parted_inside) right_holder = crack_at_meeting(g, sol, XL, smooth_in, cursor, interface, t);
+  if (right_holder != kNone) link_right_waves(g, right_holder);
+  return right_holder;
+}
 
+int Tracker::link_left_waves(const Meeting& g, int droplet) {
+  const Material* mL = g.left_region.material;
+  const WaveStates& wl = wave_left_;
   // Left part: before → C− fronts → (interface | contact_left | new right end | first C+ front ...)
   int cursor = g.left_boundary ? g.first : droplet < 0 ? pieces_[g.left_piece].left_end : g.before;
   for (std::size_t k = 0; k < emitted_left_.size(); ++k) {
     const int id = emitted_left_[k];
-    nodes_[id].right = states_of_left(k);
+    nodes_[id].right = Region{mL, wl.states[k + 1]};
     const int next = nodes_[cursor].next;
     link(cursor, id);
     link(id, next);
     cursor = id;
   }
-  // Right part, inserted after the node that holds the right star region.
-  int right_holder;  // node whose right region becomes the right star state
-  if (g.left_boundary) {
-    right_holder = g.first;
-  } else if (g.right_boundary) {
-    right_holder = kNone;
-  } else if (interface != kNone) {
-    right_holder = interface;
-  } else if (g.contact_right != kNone) {
-    right_holder = g.contact_right;
-  } else if (droplet > 0) {
-    right_holder = kNone;  // the last C− front holds the droplet's state, up to the right end
-  } else {
-    right_holder = cursor;  // plain crossing: the C+ fronts follow the C− fronts
+  return cursor;
+}
+
+int Tracker::right_state_holder(const Meeting& g, int interface, int droplet, int cursor) const {
+  if (g.left_boundary) return g.first;
+  if (g.right_boundary) return kNone;
+  if (interface != kNone) return interface;
+  if (g.contact_right != kNone) return g.contact_right;
+  if (droplet > 0) return kNone;  // the last C− front holds the droplet's state, up to the right end
+  return cursor;                  // plain crossing: the C+ fronts follow the C− fronts
+}
+
+int Tracker::crack_at_meeting(const Meeting& g, const RiemannSolution& sol, double XL, bool smooth_in, int cursor,
+                              int& interface, double t) {
+  // The body parts here (cavitation, or an interface that cannot hold).
+  const Material* mR = g.right_region.material;
+  const int left_of_crack = cursor;
+  int right_of_crack = nodes_[cursor].next;
+  if (interface != kNone) {
+    right_of_crack = nodes_[interface].next;
+    link(nodes_[interface].prev, right_of_crack);
+    kill_node(interface, t);
+    interface = kNone;
   }
-  if (parted_inside) {
-    // The body parts here (cavitation, or an interface that cannot hold).
-    const int left_of_crack = cursor;
-    int right_of_crack = nodes_[cursor].next;
-    if (interface != kNone) {
-      right_of_crack = nodes_[interface].next;
-      link(nodes_[interface].prev, right_of_crack);
-      kill_node(interface, t);
-      interface = kNone;
-    }
-    const Region right_first = emitted_right_.empty() ? g.right_region : Region{mR, wr.states.back()};
-    split_piece(left_of_crack, right_of_crack, sol.left, sol.right, Region{}, right_first, t, XL, g.x);
-    right_holder = pieces_.back().left_end;
-    event(t, "cavitation", g.x, {piece_body_name(g.left_piece)});
-    if (smooth_in) {
-      // A smooth wave's step decided this crack: a finer step would part the body elsewhere.
-      if (qualitative_cracks_++ == 0) qualitative_body_ = pieces_[g.left_piece].body;
-      qualitative_since_ = std::min(qualitative_since_, t);
-    }
-  }
-  if (right_holder != kNone) {
-    const std::size_t m = emitted_right_.size();
-    nodes_[right_holder].right = m > 0 ? Region{mR, wr.states.back()} : g.right_region;
-    int c = right_holder;
-    for (std::size_t k = 0; k < m; ++k) {
-      const int id = emitted_right_[k];
-      nodes_[id].right = states_of_right(k, m);
-      nodes_[id].piece = nodes_[c].piece;
-      const int next = nodes_[c].next;
-      link(c, id);
-      link(id, next);
-      c = id;
-    }
+  const Region right_first = emitted_right_.empty() ? g.right_region : Region{mR, wave_right_.states.back()};
+  split_piece(left_of_crack, right_of_crack, sol.left, sol.right, Region{}, right_first, t, XL, g.x);
+  const int right_holder = pieces_.back().left_end;
+  event(t, "cavitation", g.x, {piece_body_name(g.left_piece)});
+  if (smooth_in) {
+    // A smooth wave's step decided this crack: a finer step would part the body elsewhere.
+    if (qualitative_cracks_++ == 0) qualitative_body_ = pieces_[g.left_piece].body;
+    qualitative_since_ = std::min(qualitative_since_, t);
   }
   return right_holder;
+}
+
+void Tracker::link_right_waves(const Meeting& g, int right_holder) {
+  const Material* mR = g.right_region.material;
+  const WaveStates& wr = wave_right_;
+  const std::size_t m = emitted_right_.size();
+  nodes_[right_holder].right = m > 0 ? Region{mR, wr.states.back()} : g.right_region;
+  int c = right_holder;
+  for (std::size_t k = 0; k < m; ++k) {
+    const int id = emitted_right_[k];
+    // C+ fronts listed left to right: front k separates states m-k and m-k-1.
+    nodes_[id].right = Region{mR, wr.states[m - k - 1]};
+    nodes_[id].piece = nodes_[c].piece;
+    const int next = nodes_[c].next;
+    link(c, id);
+    link(id, next);
+    c = id;
+  }
 }
 
 void Tracker::resolve_group(std::vector<int>& group, double t) {

@@ -624,6 +624,15 @@ class Tracker {
   /// wave's step came in (smooth_in).
   int link_waves(const Meeting& g, const RiemannSolution& sol, int droplet, double XL, bool smooth_in, int& interface,
                  bool& parted_inside, double t);
+  /// Links the C− fronts emitted (emitted_left_) in after the left state's node; returns the left part's last node.
+  int link_left_waves(const Meeting& g, int droplet);
+  /// The node whose right region becomes the right star state (kNone: none), `cursor` the last node of the left part.
+  [[nodiscard]] int right_state_holder(const Meeting& g, int interface, int droplet, int cursor) const;
+  /// Splits the piece at a crack right of `cursor` (an interface there goes); returns the new piece's left end.
+  int crack_at_meeting(const Meeting& g, const RiemannSolution& sol, double XL, bool smooth_in, int cursor,
+                       int& interface, double t);
+  /// Links the C+ fronts emitted (emitted_right_) in after the node that holds the right star state.
+  void link_right_waves(const Meeting& g, int right_holder);
   void settle_and_schedule(const Meeting& g, int interface, bool parted_inside, int droplet, int right_holder,
                            bool parted, double t);
   /// The offsets (Node::offset) of the smooth steps resolve_group has just emitted, from those
