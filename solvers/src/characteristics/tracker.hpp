@@ -753,6 +753,12 @@ class Tracker {
   void record_segment(Node& n, double t);
   void account_front_end(int id, double t);
   void sample(const SampleTime& st);
+  /// Records probe `index` at time t: the quantities at its label, or at the label its lab position holds.
+  void sample_probe(int index, double t);
+  /// Records body b's samples of a snapshot at time t, in one walk along its pieces and their nodes.
+  void snapshot_body(const SnapshotDecl& snap, int b, double t);
+  /// Records the samples of a snapshot from the i-th on that light piece `piece` of body b holds; returns how many.
+  int snapshot_light_piece(const SnapshotDecl& snap, int b, int piece, int i, double t);
   /// The region at label X of `body` at time t, with the lab position of X.
   bool locate(int body, double X, double t, Region& region, double& x) const;
   double quantity(Quantity q, const Region& r, double X, double x) const;
