@@ -48,87 +48,100 @@ double Tracker::merge_cost(int p, int q, double t, double* X_merged) const {
 int Tracker::merge_neighbours(int id, double t) {
   for (;;) {
     if (id == kNone || !nodes_[id].alive || nodes_[id].kind != NodeKind::front) return id;
-    int best_left = kNone;
     double best_cost = policy_.merge_limit();
-    for (int side = 0; side < 2; ++side) {
-      const int p = side == 0 ? nodes_[id].prev : id;
-      const int q = side == 0 ? id : nodes_[id].next;
-      if (p == kNone || q == kNone) continue;
-      const Node& np = nodes_[p];
-      const Node& nq = nodes_[q];
-      if (np.kind != NodeKind::front || nq.kind != NodeKind::front || np.family != nq.family) continue;
-      if (unsplit(p) || unsplit(q)) continue;  // a fan's wedge is no jump to move
-      const Region& L = nodes_[np.prev].right;
-      if (L.material != np.right.material || L.material != nq.right.material) continue;
-      if (std::min(np.strength, nq.strength) * (nq.X_at(t) - np.X_at(t)) > best_cost) continue;
-      // Two fan steps of one family expand the same way, and each carries 2|ΔΨ| in its own
-      // invariant: together they span the sum, which the merged step may not (below). Most
-      // neighbours are steps of one fan (each between one and two fan steps wide): refused
-      // here, before the curves are evaluated. The margin covers a step's distance from its
-      // curve (star_mismatch_) and round-off.
-      if (np.front_kind == FrontKind::rarefaction && nq.front_kind == FrontKind::rarefaction &&
-          0.5 * (np.strength + nq.strength) > 2.0 * policy_.fan_step() * (1.0 + 1e-9) + 2.0 * star_mismatch_)
-        continue;
-      const double cost = merge_cost(p, q, t, nullptr);
-      if (cost <= best_cost) {
-        best_cost = cost;
-        best_left = p;
-      }
-    }
+    const int best_left = cheapest_neighbour_merge(id, t, best_cost);
     if (best_left == kNone) return id;
-    double X = 0.0;
     const int p = best_left, q = nodes_[p].next;
-    const int family = nodes_[p].family;
     const Region L = nodes_[nodes_[p].prev].right;
     const Region R = nodes_[q].right;
-    const Material& m = *L.material;
-    const State& outer = family < 0 ? L.state : R.state;
-    const State& inner = family < 0 ? R.state : L.state;
     FrontKind kind = FrontKind::contact;
     double off = 0.0;
-    if (!m.linearly_degenerate()) {
-      if (same_state(outer, inner)) return id;
-      if (wave_is_shock(m, outer, inner.stretch, family)) {
-        kind = FrontKind::shock;
-        const Solved<double> exact = hugoniot_rapidity(m, outer, inner.stretch, family);
-        if (!exact.ok()) return id;
-        off = std::abs(exact.value - inner.rapidity);
-        if (!(off < policy_.weak_wave())) return id;
-      } else {
-        kind = FrontKind::rarefaction;
-        if (std::abs(m.riemann_psi(outer.stretch) - m.riemann_psi(inner.stretch)) >= 2.0 * policy_.fan_step())
-          return id;
-      }
-      if (!(std::abs(label_jump_speeds(m, L.state, R.state, family).lab) < 1.0)) return id;  // no faster than light
-    }
-    merge_cost(p, q, t, &X);
-    const double x = nodes_[p].x_at(t) + (X - nodes_[p].X_at(t)) * label_density(L.state);
-    const double strength_p = std::abs(wave_strength(m, L.state, nodes_[p].right.state, family));
-    const double strength_q = std::abs(wave_strength(m, nodes_[p].right.state, R.state, family));
-    const int kept = strength_p >= strength_q ? p : q;
-    const int gone = kept == p ? q : p;
-    nodes_[kept].smooth = nodes_[p].smooth && nodes_[q].smooth;
-    // The merged front carries both fronts' errors, what their fan steps booked, and the merge's.
-    double carried = nodes_[p].carried + nodes_[q].carried + ledger_.book_merge(best_cost);
-    for (int n : {p, q}) {
-      account_front_end(n, t);
-      if (nodes_[n].front_kind == FrontKind::rarefaction) carried += book_fan_error(n, t);
-      nodes_[n].carried = 0.0;
-    }
-    ++merged_;
-    record_segment(nodes_[kept], t);
-    close_defect(nodes_[kept], t);
-    nodes_[p].right = R;  // p's right region was the middle state
-    link(nodes_[gone].prev, nodes_[gone].next);
-    if (kept == q) nodes_[q].right = R;
-    kill_node(gone, t);
-    set_front(kept, family, kind, m, L.state, R.state, t, X, x, off, t,
-              std::abs(wave_strength(m, L.state, R.state, family)));
-    nodes_[kept].carried = carried;
-    if (nodes_[kept].prev != kNone) schedule_meet(nodes_[kept].prev);
-    schedule_meet(kept);
-    id = kept;
+    if (!merged_front_kind(*L.material, L.state, R.state, nodes_[p].family, kind, off)) return id;
+    id = apply_merge_neighbours(p, q, L, R, best_cost, kind, off, t);
   }
+}
+
+int Tracker::cheapest_neighbour_merge(int id, double t, double& best_cost) const {
+  int best_left = kNone;
+  for (int side = 0; side < 2; ++side) {
+    const int p = side == 0 ? nodes_[id].prev : id;
+    const int q = side == 0 ? id : nodes_[id].next;
+    if (p == kNone || q == kNone) continue;
+    const Node& np = nodes_[p];
+    const Node& nq = nodes_[q];
+    if (np.kind != NodeKind::front || nq.kind != NodeKind::front || np.family != nq.family) continue;
+    if (unsplit(p) || unsplit(q)) continue;  // a fan's wedge is no jump to move
+    const Region& L = nodes_[np.prev].right;
+    if (L.material != np.right.material || L.material != nq.right.material) continue;
+    if (std::min(np.strength, nq.strength) * (nq.X_at(t) - np.X_at(t)) > best_cost) continue;
+    // Two fan steps of one family expand the same way, and each carries 2|ΔΨ| in its own
+    // invariant: together they span the sum, which the merged step may not (below). Most
+    // neighbours are steps of one fan (each between one and two fan steps wide): refused
+    // here, before the curves are evaluated. The margin covers a step's distance from its
+    // curve (star_mismatch_) and round-off.
+    if (np.front_kind == FrontKind::rarefaction && nq.front_kind == FrontKind::rarefaction &&
+        0.5 * (np.strength + nq.strength) > 2.0 * policy_.fan_step() * (1.0 + 1e-9) + 2.0 * star_mismatch_)
+      continue;
+    const double cost = merge_cost(p, q, t, nullptr);
+    if (cost <= best_cost) {
+      best_cost = cost;
+      best_left = p;
+    }
+  }
+  return best_left;
+}
+
+bool Tracker::merged_front_kind(const Material& m, const State& left, const State& right, int family, FrontKind& kind,
+                                double& off) const {
+  if (m.linearly_degenerate()) return true;
+  const State& outer = family < 0 ? left : right;
+  const State& inner = family < 0 ? right : left;
+  if (same_state(outer, inner)) return false;
+  if (wave_is_shock(m, outer, inner.stretch, family)) {
+    kind = FrontKind::shock;
+    const Solved<double> exact = hugoniot_rapidity(m, outer, inner.stretch, family);
+    if (!exact.ok()) return false;
+    off = std::abs(exact.value - inner.rapidity);
+    if (!(off < policy_.weak_wave())) return false;
+  } else {
+    kind = FrontKind::rarefaction;
+    if (std::abs(m.riemann_psi(outer.stretch) - m.riemann_psi(inner.stretch)) >= 2.0 * policy_.fan_step()) return false;
+  }
+  return std::abs(label_jump_speeds(m, left, right, family).lab) < 1.0;  // no faster than light
+}
+
+int Tracker::apply_merge_neighbours(int p, int q, const Region& L, const Region& R, double cost, FrontKind kind,
+                                    double off, double t) {
+  const int family = nodes_[p].family;
+  const Material& m = *L.material;
+  double X = 0.0;
+  merge_cost(p, q, t, &X);
+  const double x = nodes_[p].x_at(t) + (X - nodes_[p].X_at(t)) * label_density(L.state);
+  const double strength_p = std::abs(wave_strength(m, L.state, nodes_[p].right.state, family));
+  const double strength_q = std::abs(wave_strength(m, nodes_[p].right.state, R.state, family));
+  const int kept = strength_p >= strength_q ? p : q;
+  const int gone = kept == p ? q : p;
+  nodes_[kept].smooth = nodes_[p].smooth && nodes_[q].smooth;
+  // The merged front carries both fronts' errors, what their fan steps booked, and the merge's.
+  double carried = nodes_[p].carried + nodes_[q].carried + ledger_.book_merge(cost);
+  for (int n : {p, q}) {
+    account_front_end(n, t);
+    if (nodes_[n].front_kind == FrontKind::rarefaction) carried += book_fan_error(n, t);
+    nodes_[n].carried = 0.0;
+  }
+  ++merged_;
+  record_segment(nodes_[kept], t);
+  close_defect(nodes_[kept], t);
+  nodes_[p].right = R;  // p's right region was the middle state
+  link(nodes_[gone].prev, nodes_[gone].next);
+  if (kept == q) nodes_[q].right = R;
+  kill_node(gone, t);
+  set_front(kept, family, kind, m, L.state, R.state, t, X, x, off, t,
+            std::abs(wave_strength(m, L.state, R.state, family)));
+  nodes_[kept].carried = carried;
+  if (nodes_[kept].prev != kNone) schedule_meet(nodes_[kept].prev);
+  schedule_meet(kept);
+  return kept;
 }
 
 void Tracker::apply_merge_across(int p, int q, std::size_t split, double X_merged, double cost, double j_before,
@@ -215,16 +228,12 @@ void Tracker::apply_merge_across(int p, int q, std::size_t split, double X_merge
 /// contact) multiply for ever, since same-family fronts are kept apart by the other
 /// family's. Returns true if merged.
 bool Tracker::merge_across(int p, int q, double t) {
-  const Material& m = *nodes_[p].right.material;
   const int f = nodes_[p].family;
   const int left_of_p = nodes_[p].prev, right_of_q = nodes_[q].next;
   if (left_of_p == kNone || right_of_q == kNone) return false;
   const double limit = policy_.merge_limit();
   // No merge costs less than the weaker front times the distance: most are refused here.
   if (std::min(nodes_[p].strength, nodes_[q].strength) * (nodes_[q].X_at(t) - nodes_[p].X_at(t)) > limit) return false;
-  const auto invariant = [&](const State& st, int family) { return st.rapidity + family * memo_->psi(m, st.stretch); };
-  const State before = nodes_[left_of_p].right.state;
-  const State after_q = nodes_[q].right.state;
   const auto region_invariant = [&](const Region& r) { return r.state.rapidity + f * psi_of(r); };
   const double j_before = region_invariant(nodes_[left_of_p].right), j_after_p = region_invariant(nodes_[p].right);
   const double j_after_q = region_invariant(nodes_[q].right);
@@ -240,6 +249,28 @@ bool Tracker::merge_across(int p, int q, double t) {
   const double estimate =
       (sigma_p * sigma_q > 0.0 ? 2.0 * sigma_p * sigma_q / (sigma_p + sigma_q) : 2.0 * weaker) * (Xq - Xp);
   if (estimate > kMergeEstimateMargin * limit) return false;
+  bool extend_left = false;
+  if (!merge_segments(p, q, j_before, j_after_p, j_after_q, extend_left, t)) return false;
+  double X_merged = kInf;
+  std::size_t split = 0;
+  if (!merged_label(X_merged, split)) return false;
+  const double cost = merge_across_cost(split, X_merged, j_before, j_after_q);
+  if (cost > limit) return false;
+
+  // p and q leave; one front of family f enters at X̄.
+  apply_merge_across(p, q, split, X_merged, cost, j_before, j_after_q, extend_left, t);
+  return true;
+}
+
+bool Tracker::merge_segments(int p, int q, double j_before, double j_after_p, double j_after_q, bool& extend_left,
+                             double t) {
+  const Material& m = *nodes_[p].right.material;
+  const int f = nodes_[p].family;
+  const int left_of_p = nodes_[p].prev, right_of_q = nodes_[q].next;
+  const auto invariant = [&](const State& st, int family) { return st.rapidity + family * memo_->psi(m, st.stretch); };
+  const State before = nodes_[left_of_p].right.state;
+  const State after_q = nodes_[q].right.state;
+  const double Xp = nodes_[p].X_at(t), Xq = nodes_[q].X_at(t);
   const auto with_invariant = [&](const State& st, double j_f) -> Solved<State> {
     const double j_other = invariant(st, -f);
     const double j_plus = f > 0 ? j_f : j_other, j_minus = f > 0 ? j_other : j_f;
@@ -259,8 +290,7 @@ bool Tracker::merge_across(int p, int q, double t) {
     segments_.push_back(MergeSegment{a, b, old, j_old, left.value, right.value, right_node});
     return true;
   };
-  const bool extend_left =
-      nodes_[left_of_p].kind == NodeKind::front && nodes_[nodes_[left_of_p].prev].right.material == &m;
+  extend_left = nodes_[left_of_p].kind == NodeKind::front && nodes_[nodes_[left_of_p].prev].right.material == &m;
   const bool extend_right = nodes_[right_of_q].kind == NodeKind::front && nodes_[right_of_q].right.material == &m;
   if (extend_left && !add(nodes_[left_of_p].X_at(t), Xp, before, j_before, kNone)) return false;
   double a = Xp;
@@ -273,12 +303,14 @@ bool Tracker::merge_across(int p, int q, double t) {
   }
   if (extend_right && !add(Xq, nodes_[right_of_q].X_at(t), after_q, j_after_q, right_of_q)) return false;
   if (!extend_right) segments_.back().right_node = right_of_q;
+  return true;
+}
+
+bool Tracker::merged_label(double& X_merged, std::size_t& split) const {
   // Lab length change as X̄ moves right from the first edge: all segments on their right
   // states at first, each turning to its left state as X̄ passes it.
   double change = 0.0;
   for (const MergeSegment& g : segments_) change += (label_density(g.right) - label_density(g.old)) * (g.b - g.a);
-  double X_merged = kInf;
-  std::size_t split = 0;
   for (std::size_t i = 0; i < segments_.size(); ++i) {
     const MergeSegment& g = segments_[i];
     const double rate = label_density(g.left) - label_density(g.right);
@@ -292,18 +324,17 @@ bool Tracker::merge_across(int p, int q, double t) {
   }
   if (!std::isfinite(X_merged)) return false;
   const double margin = 64.0 * kEps * (1.0 + std::abs(X_merged));
-  if (X_merged <= segments_.front().a + margin || X_merged >= segments_.back().b - margin) return false;
+  return !(X_merged <= segments_.front().a + margin || X_merged >= segments_.back().b - margin);
+}
+
+double Tracker::merge_across_cost(std::size_t split, double X_merged, double j_before, double j_after_q) const {
   double cost = 0.0;
   for (std::size_t i = 0; i < segments_.size(); ++i) {
     const MergeSegment& g = segments_[i];
     const double left_part = i < split ? g.b - g.a : i == split ? X_merged - g.a : 0.0;
     cost += std::abs(j_before - g.j_old) * left_part + std::abs(j_after_q - g.j_old) * (g.b - g.a - left_part);
   }
-  if (cost > limit) return false;
-
-  // p and q leave; one front of family f enters at X̄.
-  apply_merge_across(p, q, split, X_merged, cost, j_before, j_after_q, extend_left, t);
-  return true;
+  return cost;
 }
 
 /// Looks for a front of the same family within a few nodes of `id`, across fronts of the

@@ -65,6 +65,29 @@ void Tracker::schedule_meets(int a, int b) {
 /// Returns false (doing nothing) when the full Riemann problem is needed: a crowd, a strong
 /// shock, a fan to split, cavitation.
 bool Tracker::cross_in_place(int a, int b, double t, InPlace& c) {
+  CrossingSides s;
+  if (!two_rarefaction_star(a, b, t, s, c)) return false;
+  const Material* m = s.left->material;
+  const State& left = s.left->state;
+  const State& right = s.right->state;
+
+  // The outgoing waves: kinds, strengths, and how far each is from its wave curve.
+  // J− across the C− front, J+ across the C+ front (for a linearly degenerate material,
+  // those the fronts brought in, passed on).
+  c.strength[0] = std::abs(s.j_minus - (left.rapidity - s.psi_left));
+  c.strength[1] = std::abs(right.rapidity + s.psi_right - s.j_plus);
+  if (m->linearly_degenerate()) {
+    if (same_state(c.star, left) || same_state(c.star, right)) return false;  // a wave vanishes
+  } else if (!star_on_curves(a, b, s, c)) {
+    return false;
+  }
+
+  if (c.held_back && !(std::abs(label_jump_speeds(*m, left, right, +1).lab) < 1.0))
+    return false;  // no faster than light
+  return true;
+}
+
+bool Tracker::two_rarefaction_star(int a, int b, double t, CrossingSides& s, InPlace& c) {
   const Node& na = nodes_[a];
   const Node& nb = nodes_[b];
   const Node& before = nodes_[na.prev];
@@ -77,12 +100,15 @@ bool Tracker::cross_in_place(int a, int b, double t, InPlace& c) {
   const double X = c.X;
   const double tolerance = 8.0 * kEps * (1.0 + std::abs(X));
   if (before.X_at(t) >= X - tolerance || after.X_at(t) <= X + tolerance) return false;  // a crowd: resolve in full
+  s.left = &before.right;
+  s.right = &nb.right;
   const State& left = before.right.state;
   const State& right = nb.right.state;
-  const double psi_left = psi_of(before.right), psi_right = psi_of(nb.right);
-  const double j_plus = left.rapidity + psi_left;
-  const double j_minus = right.rapidity - psi_right;
-  const double psi_star = 0.5 * (j_plus - j_minus);
+  s.psi_left = psi_of(before.right);
+  s.psi_right = psi_of(nb.right);
+  s.j_plus = left.rapidity + s.psi_left;
+  s.j_minus = right.rapidity - s.psi_right;
+  const double psi_star = 0.5 * (s.j_plus - s.j_minus);
   if (!(psi_star < m->psi_max())) return false;
   if (m->cavitation_pressure() > -kInf) {
     const Solved<double> parting = memo_->parting_psi(*m);
@@ -90,83 +116,98 @@ bool Tracker::cross_in_place(int a, int b, double t, InPlace& c) {
   }
   const Solved<Stretch> star_stretch = memo_->stretch_at_psi(*m, psi_star);
   if (!star_stretch.ok() || !representable(star_stretch.value)) return false;  // resolved in full, and reported
-  c.star = State{0.5 * (j_plus + j_minus), star_stretch.value};
+  c.star = State{0.5 * (s.j_plus + s.j_minus), star_stretch.value};
   c.psi_star = psi_star;
+  return true;
+}
 
-  // The outgoing waves: kinds, strengths, and how far each is from its wave curve.
-  // J− across the C− front, J+ across the C+ front (for a linearly degenerate material,
-  // those the fronts brought in, passed on).
-  c.strength[0] = std::abs(j_minus - (left.rapidity - psi_left));
-  c.strength[1] = std::abs(right.rapidity + psi_right - j_plus);
-  if (degenerate) {
-    if (same_state(c.star, left) || same_state(c.star, right)) return false;  // a wave vanishes
-  } else {
-    // The star where the two wave curves meet, to round-off, or as soon as they miss each
-    // other by less than star_mismatch_ (then booked on both fronts like a shock held off
-    // its Hugoniot: a weak crossing often takes the two-rarefaction star as it is).
-    CrossingEnds ends{CurveEnd{left, psi_left, speeds_of(before.right, -1).lagrangian, {}},
-                      CurveEnd{right, psi_right, speeds_of(nb.right, +1).lagrangian, {}}};
-    // Two waves crossing head-on pass through each other nearly unchanged: each outgoing
-    // wave carries the jump in the other family's invariant its incoming self had (zero
-    // for a fan step; a shock's, third order in its strength, off the integral curve).
-    // The star from those jumps misses the exact one by a fourth-order term where the
-    // two-rarefaction star misses it by a third-order one.
-    State guess = c.star;
-    if (na.family > 0 && nb.family < 0) {
-      const State& middle = na.right.state;
-      const double psi_middle = psi_of(na.right);
-      const double carried_plus = (right.rapidity + psi_right) - (middle.rapidity + psi_middle);  // J+ across b
-      const double carried_minus = (middle.rapidity - psi_middle) - (left.rapidity - psi_left);   // J− across a
-      if (carried_plus != 0.0 || carried_minus != 0.0) {
-        const Solved<Stretch> s = m->stretch_at_psi(0.5 * ((j_plus + carried_plus) - (j_minus - carried_minus)));
-        if (s.ok() && representable(s.value)) guess.stretch = s.value;
-      }
-    }
-    const Solved<SameMaterialStar> found = same_material_star(*m, ends, guess, star_mismatch_);
-    if (!found.ok()) return false;
-    c.star = found.value.state;
-    c.converged = found.value.converged;
-    c.star_speeds[0] = found.value.speeds[0];
-    c.star_speeds[1] = found.value.speeds[1];
-    c.outer_laws[0] = ends.left.laws;
-    c.outer_laws[1] = ends.right.laws;
-    c.star_laws = found.value.laws;
-    c.psi_star = m->riemann_psi(c.star.stretch);
-    bool shock[2] = {found.value.shock[0], found.value.shock[1]};
-    for (int k = 0; k < 2; ++k) c.off_curve[k] = shock[k] || !found.value.converged ? found.value.off[k] : 0.0;
-    c.strength[0] = std::abs((c.star.rapidity - left.rapidity) - (c.psi_star - psi_left));
-    c.strength[1] = std::abs((right.rapidity - c.star.rapidity) + (psi_right - c.psi_star));
-    if (c.strength[0] < policy_.weak_merging() && na.family == nb.family) {
-      c.held_back = true;
-      c.star = left;
-      c.psi_star = psi_left;
-      // The C+ wave now joins `left` to `right`: its curve through `right` at left's stretch.
-      shock[1] = wave_is_shock(*m, right, c.star.stretch, +1);
-      c.off_curve[1] = 0.0;
-      if (shock[1]) {
-        const Solved<double> exact = hugoniot_rapidity(*m, right, c.star.stretch, +1);
-        if (!exact.ok()) return false;
-        c.off_curve[1] = std::abs(exact.value - c.star.rapidity);
-      }
-      c.strength[1] = std::abs((right.rapidity - left.rapidity) + (psi_right - psi_left));
-    }
-    for (int k = c.held_back ? 1 : 0; k < 2; ++k) {
-      const State& outer = k == 0 ? left : right;
-      if (same_state(outer, c.star)) return false;
-      if (shock[k]) {
-        c.kinds[k] = FrontKind::shock;
-        if (!(c.off_curve[k] < policy_.weak_wave())) return false;
-      } else {
-        c.kinds[k] = FrontKind::rarefaction;
-        const double span = std::abs(c.psi_star - (k == 0 ? psi_left : psi_right));
-        // A new fan is split in steps; a step of a smooth wave goes on as one step.
-        if (span >= 2.0 * policy_.fan_step() && !na.smooth && !nb.smooth) return false;
-      }
+State Tracker::head_on_guess(int a, int b, const CrossingSides& s, const State& star) {
+  // Two waves crossing head-on pass through each other nearly unchanged: each outgoing
+  // wave carries the jump in the other family's invariant its incoming self had (zero
+  // for a fan step; a shock's, third order in its strength, off the integral curve).
+  // The star from those jumps misses the exact one by a fourth-order term where the
+  // two-rarefaction star misses it by a third-order one.
+  const Node& na = nodes_[a];
+  const Material* m = s.left->material;
+  const State& left = s.left->state;
+  const State& right = s.right->state;
+  State guess = star;
+  if (na.family > 0 && nodes_[b].family < 0) {
+    const State& middle = na.right.state;
+    const double psi_middle = psi_of(na.right);
+    const double carried_plus = (right.rapidity + s.psi_right) - (middle.rapidity + psi_middle);  // J+ across b
+    const double carried_minus = (middle.rapidity - psi_middle) - (left.rapidity - s.psi_left);   // J− across a
+    if (carried_plus != 0.0 || carried_minus != 0.0) {
+      const Solved<Stretch> st = m->stretch_at_psi(0.5 * ((s.j_plus + carried_plus) - (s.j_minus - carried_minus)));
+      if (st.ok() && representable(st.value)) guess.stretch = st.value;
     }
   }
+  return guess;
+}
 
-  if (c.held_back && !(std::abs(label_jump_speeds(*m, left, right, +1).lab) < 1.0))
-    return false;  // no faster than light
+bool Tracker::star_on_curves(int a, int b, const CrossingSides& s, InPlace& c) {
+  const Material* m = s.left->material;
+  const State& left = s.left->state;
+  const State& right = s.right->state;
+  // The star where the two wave curves meet, to round-off, or as soon as they miss each
+  // other by less than star_mismatch_ (then booked on both fronts like a shock held off
+  // its Hugoniot: a weak crossing often takes the two-rarefaction star as it is).
+  CrossingEnds ends{CurveEnd{left, s.psi_left, speeds_of(*s.left, -1).lagrangian, {}},
+                    CurveEnd{right, s.psi_right, speeds_of(*s.right, +1).lagrangian, {}}};
+  const State guess = head_on_guess(a, b, s, c.star);
+  const Solved<SameMaterialStar> found = same_material_star(*m, ends, guess, star_mismatch_);
+  if (!found.ok()) return false;
+  c.star = found.value.state;
+  c.converged = found.value.converged;
+  c.star_speeds[0] = found.value.speeds[0];
+  c.star_speeds[1] = found.value.speeds[1];
+  c.outer_laws[0] = ends.left.laws;
+  c.outer_laws[1] = ends.right.laws;
+  c.star_laws = found.value.laws;
+  c.psi_star = m->riemann_psi(c.star.stretch);
+  bool shock[2] = {found.value.shock[0], found.value.shock[1]};
+  for (int k = 0; k < 2; ++k) c.off_curve[k] = shock[k] || !found.value.converged ? found.value.off[k] : 0.0;
+  c.strength[0] = std::abs((c.star.rapidity - left.rapidity) - (c.psi_star - s.psi_left));
+  c.strength[1] = std::abs((right.rapidity - c.star.rapidity) + (s.psi_right - c.psi_star));
+  if (c.strength[0] < policy_.weak_merging() && nodes_[a].family == nodes_[b].family) {
+    if (!hold_back_minus(s, shock, c)) return false;
+  }
+  return outgoing_kinds(a, b, s, shock, c);
+}
+
+bool Tracker::hold_back_minus(const CrossingSides& s, bool shock[2], InPlace& c) {
+  const Material* m = s.left->material;
+  const State& left = s.left->state;
+  const State& right = s.right->state;
+  c.held_back = true;
+  c.star = left;
+  c.psi_star = s.psi_left;
+  // The C+ wave now joins `left` to `right`: its curve through `right` at left's stretch.
+  shock[1] = wave_is_shock(*m, right, c.star.stretch, +1);
+  c.off_curve[1] = 0.0;
+  if (shock[1]) {
+    const Solved<double> exact = hugoniot_rapidity(*m, right, c.star.stretch, +1);
+    if (!exact.ok()) return false;
+    c.off_curve[1] = std::abs(exact.value - c.star.rapidity);
+  }
+  c.strength[1] = std::abs((right.rapidity - left.rapidity) + (s.psi_right - s.psi_left));
+  return true;
+}
+
+bool Tracker::outgoing_kinds(int a, int b, const CrossingSides& s, const bool shock[2], InPlace& c) const {
+  for (int k = c.held_back ? 1 : 0; k < 2; ++k) {
+    const State& outer = k == 0 ? s.left->state : s.right->state;
+    if (same_state(outer, c.star)) return false;
+    if (shock[k]) {
+      c.kinds[k] = FrontKind::shock;
+      if (!(c.off_curve[k] < policy_.weak_wave())) return false;
+    } else {
+      c.kinds[k] = FrontKind::rarefaction;
+      const double span = std::abs(c.psi_star - (k == 0 ? s.psi_left : s.psi_right));
+      // A new fan is split in steps; a step of a smooth wave goes on as one step.
+      if (span >= 2.0 * policy_.fan_step() && !nodes_[a].smooth && !nodes_[b].smooth) return false;
+    }
+  }
   return true;
 }
 
@@ -208,14 +249,6 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   if (na.kind != NodeKind::front || nb.kind != NodeKind::front) return false;
   InPlace c;
   if (!cross_in_place(a, b, t, c)) return false;
-  const Node& before = nodes_[na.prev];
-  const Node& after = nodes_[nb.next];
-  const Material* m = before.right.material;
-  const bool degenerate = m->linearly_degenerate();
-  const State& left = before.right.state;
-  const State& right = nb.right.state;
-  const double X = c.X;
-  const State& star = c.star;
 
   hand_on_in_place(a, b, t, c);
 
@@ -227,40 +260,71 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   record_segment(na, t);
   record_segment(nb, t);
   if (c.held_back) {
-    ledger_.book_defect(
-        c.strength[0] *
-        std::min(piece_length(na.piece), std::abs(speeds_of(before.right, -1).lagrangian) * (scene_.t_end - t)));
-    ++suppressed_;
-    const int keep_before = na.prev;
-    account_front_end(a, t);  // its shock books close while its neighbours are still its own
-    link(keep_before, b);
-    kill_node(a, t);
-    ledger_.lose(c.carried[0]);  // the C− wave held back (its strength is booked above)
-    nodes_[b].carried = c.carried[1];
-    nodes_[b].smooth = c.smooth_in.out(1);
-    nodes_[b].kink = 0.0;
-    nodes_[b].offset = 0.0;
-    set_front(b, +1, c.kinds[1], *m, left, right, t, X, x, c.off_curve[1], c.born[1], c.strength[1]);
-    schedule_meet(keep_before);
-    schedule_meet(b);
+    hold_back_in_place(a, b, c, x, t);
     return true;
   }
   account_front_end(a, t);
   account_front_end(b, t);
   result_.stats.fronts += 2;
+  set_crossed_fronts(a, b, c, x, t);
+  schedule_meet(na.prev);
+  schedule_meets(a, b);
+  merge_after_crossing(a, b, c.X, t);
+  return true;
+}
+
+void Tracker::hold_back_in_place(int a, int b, const InPlace& c, double x, double t) {
+  const Node& na = nodes_[a];
+  const Node& before = nodes_[na.prev];
+  const Material* m = before.right.material;
+  const State& left = before.right.state;
+  const State& right = nodes_[b].right.state;
+  ledger_.book_defect(c.strength[0] * std::min(piece_length(na.piece),
+                                               std::abs(speeds_of(before.right, -1).lagrangian) * (scene_.t_end - t)));
+  ++suppressed_;
+  const int keep_before = na.prev;
+  account_front_end(a, t);  // its shock books close while its neighbours are still its own
+  link(keep_before, b);
+  kill_node(a, t);
+  ledger_.lose(c.carried[0]);  // the C− wave held back (its strength is booked above)
+  nodes_[b].carried = c.carried[1];
+  nodes_[b].smooth = c.smooth_in.out(1);
+  nodes_[b].kink = 0.0;
+  nodes_[b].offset = 0.0;
+  set_front(b, +1, c.kinds[1], *m, left, right, t, c.X, x, c.off_curve[1], c.born[1], c.strength[1]);
+  schedule_meet(keep_before);
+  schedule_meet(b);
+}
+
+Region Tracker::crossing_star_region(int a, int b, const InPlace& c) const {
+  const Region& left = nodes_[nodes_[a].prev].right;
+  const Region& right = nodes_[b].right;
   // The star's Ψ is at hand; in a linearly degenerate material its C− speeds are those of
   // `left` (J+ is the same) and its C+ speeds those of `right` (J− is), and so are the
   // speeds of the two fronts.
-  Region star_region{m, star};
+  Region star_region{left.material, c.star};
   star_region.psi = c.psi_star;
-  if (degenerate) {
-    star_region.speeds[0] = speeds_of(before.right, -1);
-    star_region.speeds[1] = speeds_of(nb.right, +1);
+  if (left.material->linearly_degenerate()) {
+    star_region.speeds[0] = speeds_of(left, -1);
+    star_region.speeds[1] = speeds_of(right, +1);
   } else if (c.converged) {
     // A fan step's curve was asked for its speeds at the star (to round-off) already.
     star_region.speeds[0] = c.star_speeds[0];
     star_region.speeds[1] = c.star_speeds[1];
   }
+  return star_region;
+}
+
+void Tracker::set_crossed_fronts(int a, int b, const InPlace& c, double x, double t) {
+  Node& na = nodes_[a];
+  Node& nb = nodes_[b];
+  const Node& before = nodes_[na.prev];
+  const Material* m = before.right.material;
+  const bool degenerate = m->linearly_degenerate();
+  const State& left = before.right.state;
+  const State& right = nb.right.state;
+  const State& star = c.star;
+  Region star_region = crossing_star_region(a, b, c);
   // The laws at the outer states and the star, where the crossing's wave curves asked for them.
   const JumpLaws laws_minus[2] = {c.outer_laws[0], c.star_laws};
   const JumpLaws laws_plus[2] = {c.star_laws, c.outer_laws[1]};
@@ -286,9 +350,9 @@ bool Tracker::interact_in_place(int a, int b, double t) {
   nb.offset = c.smooth_in.out(1) ? offset_plus : 0.0;
   na.smooth = c.smooth_in.out(0);
   nb.smooth = c.smooth_in.out(1);
-  set_front(a, -1, c.kinds[0], *m, left, star, t, X, x, c.off_curve[0], c.born[0], c.strength[0],
+  set_front(a, -1, c.kinds[0], *m, left, star, t, c.X, x, c.off_curve[0], c.born[0], c.strength[0],
             degenerate ? &star_region.speeds[0] : nullptr, laws_minus, at[0], at[1]);
-  set_front(b, +1, c.kinds[1], *m, star, right, t, X, x, c.off_curve[1], c.born[1], c.strength[1],
+  set_front(b, +1, c.kinds[1], *m, star, right, t, c.X, x, c.off_curve[1], c.born[1], c.strength[1],
             degenerate ? &star_region.speeds[1] : nullptr, laws_plus, at[1], at[2]);
   na.right = star_region;
   na.carried = c.carried[0];
@@ -298,9 +362,12 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     jump.kink = std::abs(jump.dXdt - jump_speed);
     jump.kink_dt = t - jump_since;
   }
-  schedule_meet(na.prev);
-  schedule_meets(a, b);
-  if (degenerate) {
+}
+
+void Tracker::merge_after_crossing(int a, int b, double X, double t) {
+  const Node& before = nodes_[nodes_[a].prev];
+  const Node& after = nodes_[nodes_[b].next];
+  if (before.right.material->linearly_degenerate()) {
     // The two new fronts sit together; the nearest others are `before` and `after`. A
     // front's walk for a merge stops at the first one whose distance times the front's
     // strength exceeds what a merge may cost (merge_nearby): asked here first, as it
@@ -314,7 +381,6 @@ bool Tracker::interact_in_place(int a, int b, double t) {
     merge_neighbours(a, t);
     merge_neighbours(b, t);
   }
-  return true;
 }
 
 /// A front of family `family` between the states `left` and `right` of material m, leaving
@@ -872,19 +938,6 @@ void Tracker::settle_and_schedule(const Meeting& g, int interface, bool parted_i
 
 int Tracker::link_waves(const Meeting& g, const RiemannSolution& sol, int droplet, double XL, bool smooth_in,
                         int& interface, bool& parted_inside, double t) {
-  const Material* mL = g.left_region.material;
-  const Material* mR = g.right_region.material;
-  WaveStates& wl = wave_left_;
-  WaveStates& wr = wave_right_;
-
-  // Link: [before] − fronts [centre] + fronts [right state holder].
-  // The region right of the C− fronts is the left star state, left of the C+ fronts the right star state.
-  auto states_of_left = [&](std::size_t k) -> Region { return Region{mL, wl.states[k + 1]}; };
-  auto states_of_right = [&](std::size_t k, std::size_t m) -> Region {
-    // C+ fronts listed left to right: front k separates states m-k and m-k-1.
-    return Region{mR, wr.states[m - k - 1]};
-  };
-
   parted_inside = !g.left_boundary && !g.right_boundary && sol.parted && g.contact_left == kNone;
   if (!g.left_boundary && !g.right_boundary && sol.parted && g.contact_left != kNone) {
     // Two bodies in contact separate.
@@ -892,67 +945,80 @@ int Tracker::link_waves(const Meeting& g, const RiemannSolution& sol, int drople
     set_attach(g.contact_right, Attach::free, kNone, t);
     event(t, "separation", g.x, {piece_body_name(g.left_piece), piece_body_name(g.right_piece)});
   }
+  // Link: [before] − fronts [centre] + fronts [right state holder]. The region right of the
+  // C− fronts is the left star state, left of the C+ fronts the right star state.
+  const int cursor = link_left_waves(g, droplet);
+  int right_holder = right_state_holder(g, interface, droplet, cursor);
+  if (parted_inside) right_holder = crack_at_meeting(g, sol, XL, smooth_in, cursor, interface, t);
+  if (right_holder != kNone) link_right_waves(g, right_holder);
+  return right_holder;
+}
 
+int Tracker::link_left_waves(const Meeting& g, int droplet) {
+  const Material* mL = g.left_region.material;
+  const WaveStates& wl = wave_left_;
   // Left part: before → C− fronts → (interface | contact_left | new right end | first C+ front ...)
   int cursor = g.left_boundary ? g.first : droplet < 0 ? pieces_[g.left_piece].left_end : g.before;
   for (std::size_t k = 0; k < emitted_left_.size(); ++k) {
     const int id = emitted_left_[k];
-    nodes_[id].right = states_of_left(k);
+    nodes_[id].right = Region{mL, wl.states[k + 1]};
     const int next = nodes_[cursor].next;
     link(cursor, id);
     link(id, next);
     cursor = id;
   }
-  // Right part, inserted after the node that holds the right star region.
-  int right_holder;  // node whose right region becomes the right star state
-  if (g.left_boundary) {
-    right_holder = g.first;
-  } else if (g.right_boundary) {
-    right_holder = kNone;
-  } else if (interface != kNone) {
-    right_holder = interface;
-  } else if (g.contact_right != kNone) {
-    right_holder = g.contact_right;
-  } else if (droplet > 0) {
-    right_holder = kNone;  // the last C− front holds the droplet's state, up to the right end
-  } else {
-    right_holder = cursor;  // plain crossing: the C+ fronts follow the C− fronts
+  return cursor;
+}
+
+int Tracker::right_state_holder(const Meeting& g, int interface, int droplet, int cursor) const {
+  if (g.left_boundary) return g.first;
+  if (g.right_boundary) return kNone;
+  if (interface != kNone) return interface;
+  if (g.contact_right != kNone) return g.contact_right;
+  if (droplet > 0) return kNone;  // the last C− front holds the droplet's state, up to the right end
+  return cursor;                  // plain crossing: the C+ fronts follow the C− fronts
+}
+
+int Tracker::crack_at_meeting(const Meeting& g, const RiemannSolution& sol, double XL, bool smooth_in, int cursor,
+                              int& interface, double t) {
+  // The body parts here (cavitation, or an interface that cannot hold).
+  const Material* mR = g.right_region.material;
+  const int left_of_crack = cursor;
+  int right_of_crack = nodes_[cursor].next;
+  if (interface != kNone) {
+    right_of_crack = nodes_[interface].next;
+    link(nodes_[interface].prev, right_of_crack);
+    kill_node(interface, t);
+    interface = kNone;
   }
-  if (parted_inside) {
-    // The body parts here (cavitation, or an interface that cannot hold).
-    const int left_of_crack = cursor;
-    int right_of_crack = nodes_[cursor].next;
-    if (interface != kNone) {
-      right_of_crack = nodes_[interface].next;
-      link(nodes_[interface].prev, right_of_crack);
-      kill_node(interface, t);
-      interface = kNone;
-    }
-    const Region right_first = emitted_right_.empty() ? g.right_region : Region{mR, wr.states.back()};
-    split_piece(left_of_crack, right_of_crack, sol.left, sol.right, Region{}, right_first, t, XL, g.x);
-    right_holder = pieces_.back().left_end;
-    event(t, "cavitation", g.x, {piece_body_name(g.left_piece)});
-    if (smooth_in) {
-      // A smooth wave's step decided this crack: a finer step would part the body elsewhere.
-      if (qualitative_cracks_++ == 0) qualitative_body_ = pieces_[g.left_piece].body;
-      qualitative_since_ = std::min(qualitative_since_, t);
-    }
-  }
-  if (right_holder != kNone) {
-    const std::size_t m = emitted_right_.size();
-    nodes_[right_holder].right = m > 0 ? Region{mR, wr.states.back()} : g.right_region;
-    int c = right_holder;
-    for (std::size_t k = 0; k < m; ++k) {
-      const int id = emitted_right_[k];
-      nodes_[id].right = states_of_right(k, m);
-      nodes_[id].piece = nodes_[c].piece;
-      const int next = nodes_[c].next;
-      link(c, id);
-      link(id, next);
-      c = id;
-    }
+  const Region right_first = emitted_right_.empty() ? g.right_region : Region{mR, wave_right_.states.back()};
+  split_piece(left_of_crack, right_of_crack, sol.left, sol.right, Region{}, right_first, t, XL, g.x);
+  const int right_holder = pieces_.back().left_end;
+  event(t, "cavitation", g.x, {piece_body_name(g.left_piece)});
+  if (smooth_in) {
+    // A smooth wave's step decided this crack: a finer step would part the body elsewhere.
+    if (qualitative_cracks_++ == 0) qualitative_body_ = pieces_[g.left_piece].body;
+    qualitative_since_ = std::min(qualitative_since_, t);
   }
   return right_holder;
+}
+
+void Tracker::link_right_waves(const Meeting& g, int right_holder) {
+  const Material* mR = g.right_region.material;
+  const WaveStates& wr = wave_right_;
+  const std::size_t m = emitted_right_.size();
+  nodes_[right_holder].right = m > 0 ? Region{mR, wr.states.back()} : g.right_region;
+  int c = right_holder;
+  for (std::size_t k = 0; k < m; ++k) {
+    const int id = emitted_right_[k];
+    // C+ fronts listed left to right: front k separates states m-k and m-k-1.
+    nodes_[id].right = Region{mR, wr.states[m - k - 1]};
+    nodes_[id].piece = nodes_[c].piece;
+    const int next = nodes_[c].next;
+    link(c, id);
+    link(id, next);
+    c = id;
+  }
 }
 
 void Tracker::resolve_group(std::vector<int>& group, double t) {

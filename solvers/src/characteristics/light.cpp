@@ -16,6 +16,13 @@ constexpr int kLightMinFronts = 8;
 /// How many fronts of the other family a merge of two light fronts may reach across.
 constexpr std::size_t kLightMergeReach = 16;
 
+namespace {
+
+/// Whether lab position x is at or past `limit`, going away from the end fronts of `family` leave.
+bool beyond(int family, double x, double limit) { return family > 0 ? x >= limit : x <= limit; }
+
+}  // namespace
+
 State Tracker::light_state(const Material& m, double j_plus, double j_minus) const {
   const Solved<Stretch> s = memo_->stretch_at_psi(m, 0.5 * (j_plus - j_minus));
   if (!s.ok())
@@ -253,52 +260,71 @@ bool Tracker::merge_light(int piece, int family, double t) {
   LightPiece& lp = light_[piece];
   std::deque<LightFront>& queue = family > 0 ? lp.plus : lp.minus;
   if (queue.size() < 2) return false;
-  LightFront& older = queue[queue.size() - 2];
+  const LightFront& older = queue[queue.size() - 2];
   const LightFront& newer = queue.back();
-  const double j_between = older.j_behind;   // = newer.j_ahead
-  const double j_near_old = older.j_ahead;   // ahead of the older front
-  const double j_near_new = newer.j_behind;  // behind the newer one
-  const double x_old = older.x_at(t, family), x_new = newer.x_at(t, family);
+  LightMerge g;
+  g.family = family;
+  g.j_between = older.j_behind;   // = newer.j_ahead
+  g.j_near_old = older.j_ahead;   // ahead of the older front
+  g.j_near_new = newer.j_behind;  // behind the newer one
+  g.x_old = older.x_at(t, family);
+  g.x_new = newer.x_at(t, family);
   // Most merges are refused here, before any state is built: the weaker front times half
   // the lab distance between the two (a merge costs about the weaker front times the natural
   // length between them, γ/s times the lab length) already costs more than a merge may.
-  const double weaker = std::min(std::abs(j_between - j_near_old), std::abs(j_near_new - j_between));
-  if (weaker * std::abs(x_old - x_new) * 0.5 > policy_.light_merge_limit()) return false;
+  const double weaker = std::min(std::abs(g.j_between - g.j_near_old), std::abs(g.j_near_new - g.j_between));
+  if (weaker * std::abs(g.x_old - g.x_new) * 0.5 > policy_.light_merge_limit()) return false;
   // How far the merged front may go: the next front of the family ahead, or the far end.
-  const double x_limit = queue.size() >= 3
-                             ? queue[queue.size() - 3].x_at(t, family)
-                             : nodes_[family > 0 ? pieces_[piece].right_end : pieces_[piece].left_end].x_at(t);
+  g.x_limit = queue.size() >= 3 ? queue[queue.size() - 3].x_at(t, family)
+                                : nodes_[family > 0 ? pieces_[piece].right_end : pieces_[piece].left_end].x_at(t);
+  light_merge_parts(piece, t, g);
+  if (!light_merge_place(piece, g)) return false;
+  const double margin = 64.0 * kEps * (1.0 + std::abs(g.place));
+  if (!(beyond(family, g.place, g.x_new + family * margin) && beyond(family, g.x_stop - family * margin, g.place)))
+    return false;
+  const double cost = light_merge_cost(g);
+  if (cost > policy_.light_merge_limit()) return false;
+  apply_merge_light(piece, g, cost, t);
+  return true;
+}
+
+void Tracker::light_merge_parts(int piece, double t, LightMerge& g) const {
+  const LightPiece& lp = light_[piece];
+  const int family = g.family;
   const Material& m = *nodes_[lp.store].right.material;
   const std::deque<LightFront>& other = family > 0 ? lp.minus : lp.plus;
   const State& next_to_end = family > 0 ? nodes_[pieces_[piece].left_end].right.state : nodes_[lp.store].right.state;
-  struct Part {
-    double from, to;        ///< lab extent, in the direction away from the new front's end
-    double j_other, j_old;  ///< the other family's invariant there, this family's now
-  };
-  std::vector<Part> parts;
+  std::vector<LightMerge::Part>& parts = g.parts;
   double j_other = invariant(m, next_to_end, -family);
-  double cursor = x_new;
-  const auto beyond = [&](double x, double limit) { return family > 0 ? x >= limit : x <= limit; };
+  double cursor = g.x_new;
   for (const LightFront& o : other) {  // the other family's fronts nearest the new front's end first
     const double xo = o.x_at(t, -family);
-    if (!beyond(xo, cursor) || xo == cursor) continue;
-    if (beyond(xo, x_limit)) break;
+    if (!beyond(family, xo, cursor) || xo == cursor) continue;
+    if (beyond(family, xo, g.x_limit)) break;
     if (parts.size() >= kLightMergeReach) break;
     // Up to xo, split at the older front.
-    if (!beyond(cursor, x_old) && beyond(xo, x_old)) {
-      parts.push_back(Part{cursor, x_old, j_other, j_between});
-      cursor = x_old;
+    if (!beyond(family, cursor, g.x_old) && beyond(family, xo, g.x_old)) {
+      parts.push_back(LightMerge::Part{cursor, g.x_old, j_other, g.j_between});
+      cursor = g.x_old;
     }
-    parts.push_back(Part{cursor, xo, j_other, beyond(cursor, x_old) ? j_near_old : j_between});
+    parts.push_back(
+        LightMerge::Part{cursor, xo, j_other, beyond(family, cursor, g.x_old) ? g.j_near_old : g.j_between});
     j_other = o.j_behind;  // past it, away from this end: the side it comes from
     cursor = xo;
   }
-  const double x_stop = parts.size() >= kLightMergeReach ? cursor : x_limit;
-  if (!beyond(cursor, x_old)) {
-    parts.push_back(Part{cursor, x_old, j_other, j_between});
-    cursor = x_old;
+  g.x_stop = parts.size() >= kLightMergeReach ? cursor : g.x_limit;
+  if (!beyond(family, cursor, g.x_old)) {
+    parts.push_back(LightMerge::Part{cursor, g.x_old, j_other, g.j_between});
+    cursor = g.x_old;
   }
-  if (beyond(x_stop, cursor) && x_stop != cursor) parts.push_back(Part{cursor, x_stop, j_other, j_near_old});
+  if (beyond(family, g.x_stop, cursor) && g.x_stop != cursor)
+    parts.push_back(LightMerge::Part{cursor, g.x_stop, j_other, g.j_near_old});
+}
+
+bool Tracker::light_merge_place(int piece, LightMerge& g) const {
+  const Material& m = *nodes_[light_[piece].store].right.material;
+  const int family = g.family;
+  const std::vector<LightMerge::Part>& parts = g.parts;
   const auto label_per_lab = [&](double j_self, double j_o) {
     const State st = family > 0 ? light_state(m, j_self, j_o) : light_state(m, j_o, j_self);
     return 1.0 / label_density(st);
@@ -307,56 +333,65 @@ bool Tracker::merge_light(int piece, int family, double t) {
   // passed take j_near_new, the others j_near_old; F = new length − old length, linear on
   // each part.
   const std::size_t n = parts.size();
-  std::vector<double> density_old(n), density_new(n), density_near_old(n);
+  g.density_old.resize(n);
+  g.density_new.resize(n);
+  g.density_near_old.resize(n);
   double change = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     const double length = std::abs(parts[i].to - parts[i].from);
-    density_old[i] = label_per_lab(parts[i].j_old, parts[i].j_other);
-    density_new[i] = label_per_lab(j_near_new, parts[i].j_other);
-    density_near_old[i] = parts[i].j_old == j_near_old ? density_old[i] : label_per_lab(j_near_old, parts[i].j_other);
-    change += (density_near_old[i] - density_old[i]) * length;
+    g.density_old[i] = label_per_lab(parts[i].j_old, parts[i].j_other);
+    g.density_new[i] = label_per_lab(g.j_near_new, parts[i].j_other);
+    g.density_near_old[i] =
+        parts[i].j_old == g.j_near_old ? g.density_old[i] : label_per_lab(g.j_near_old, parts[i].j_other);
+    change += (g.density_near_old[i] - g.density_old[i]) * length;
   }
-  double place = kInf;
-  std::size_t split = 0;
-  double swept_in_split = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     const double length = std::abs(parts[i].to - parts[i].from);
-    const double rate = density_new[i] - density_near_old[i];
+    const double rate = g.density_new[i] - g.density_near_old[i];
     const double next = change + rate * length;
     if ((change <= 0.0 && next >= 0.0) || (change >= 0.0 && next <= 0.0)) {
-      swept_in_split = rate == 0.0 ? 0.0 : std::clamp(-change / rate, 0.0, length);
-      place = parts[i].from + family * swept_in_split;
-      split = i;
+      g.swept_in_split = rate == 0.0 ? 0.0 : std::clamp(-change / rate, 0.0, length);
+      g.place = parts[i].from + family * g.swept_in_split;
+      g.split = i;
       break;
     }
     change = next;
   }
-  if (!std::isfinite(place)) return false;
-  const double margin = 64.0 * kEps * (1.0 + std::abs(place));
-  if (!(beyond(place, x_new + family * margin) && beyond(x_stop - family * margin, place))) return false;
+  return std::isfinite(g.place);
+}
+
+double Tracker::light_merge_cost(const LightMerge& g) const {
   // What it costs: |δJ| of this family times the natural length it changes over.
   double cost = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double length = std::abs(parts[i].to - parts[i].from);
-    const double swept = i < split ? length : i == split ? swept_in_split : 0.0;
-    cost += density_old[i] *
-            (std::abs(j_near_new - parts[i].j_old) * swept + std::abs(j_near_old - parts[i].j_old) * (length - swept));
+  for (std::size_t i = 0; i < g.parts.size(); ++i) {
+    const LightMerge::Part& part = g.parts[i];
+    const double length = std::abs(part.to - part.from);
+    const double swept = i < g.split ? length : i == g.split ? g.swept_in_split : 0.0;
+    cost += g.density_old[i] *
+            (std::abs(g.j_near_new - part.j_old) * swept + std::abs(g.j_near_old - part.j_old) * (length - swept));
   }
-  if (cost > policy_.light_merge_limit()) return false;
+  return cost;
+}
+
+void Tracker::apply_merge_light(int piece, const LightMerge& g, double cost, double t) {
+  const int family = g.family;
+  const double place = g.place;
+  std::deque<LightFront>& queue = family > 0 ? light_[piece].plus : light_[piece].minus;
+  LightFront& older = queue[queue.size() - 2];
+  const LightFront& newer = queue.back();
   ++merged_;
   older.carried += newer.carried + ledger_.book_merge(cost);
   older.smooth = older.smooth && newer.smooth;
   if (want_fronts_ && t > older.t0) {
-    recorder_.front(FrontSegment{older.t0, older.x0, t, x_old, SegmentKind::contact, family});
+    recorder_.front(FrontSegment{older.t0, older.x0, t, g.x_old, SegmentKind::contact, family});
   }
-  older.j_behind = j_near_new;
+  older.j_behind = g.j_near_new;
   older.intercept = place - family * t;
   older.t0 = t;
   older.x0 = place;
   queue.pop_back();
   --live_fronts_;
   --light_fronts_;
-  return true;
 }
 
 void Tracker::record_light_segments(int piece, double t) {

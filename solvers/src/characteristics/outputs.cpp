@@ -118,31 +118,8 @@ double Tracker::quantity(Quantity q, const Region& r, double X, double x) const 
 
 void Tracker::sample(const SampleTime& st) {
   const SamplingTimer timer(result_.stats.sampling_time_s);
-  const double t = st.t;
   if (st.kind == SampleTime::Kind::probe) {
-    const ProbeDecl& probe = scene_.outputs.probes[st.index];
-    const int body = probe_body(scene_, probe);
-    Region r;
-    double x = 0.0, X = probe.X;
-    if (probe.lab_x) {
-      // The piece of the body that covers the lab position, and the label there.
-      bool covered = false;
-      for (int piece : order_) {
-        if (pieces_[piece].body != body) continue;
-        const Node& le = nodes_[pieces_[piece].left_end];
-        const Node& re = nodes_[pieces_[piece].right_end];
-        if (*probe.lab_x < le.x_at(t) || *probe.lab_x > re.x_at(t)) continue;
-        X = label_at_lab(*probe.lab_x, le.X_at(t), re.X_at(t), [&](double label) {
-          double at = 0.0;
-          return locate(body, label, t, r, at) ? at : label;
-        });
-        covered = true;
-        break;
-      }
-      if (!covered) return;
-    }
-    if (!locate(body, X, t, r, x)) return;
-    for (Quantity q : probe.quantities) recorder_.probe(ProbeSample{t, st.index, q, quantity(q, r, X, x)});
+    sample_probe(st.index, st.t);
     return;
   }
   // A snapshot's labels rise, and so do the pieces of a body in lab order and the nodes of
@@ -150,55 +127,87 @@ void Tracker::sample(const SampleTime& st) {
   // X alone), in O(samples + nodes).
   const SnapshotDecl& snap = scene_.outputs.snapshots[st.index];
   for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
-    const BodyDecl& body = scene_.bodies[b];
-    if (!snapshot_includes(snap, body)) continue;
-    const double l0 = body.natural_length();
-    auto piece = order_.begin();
-    const auto next_piece = [&] {
-      while (piece != order_.end() && pieces_[*piece].body != static_cast<int>(b)) ++piece;
-    };
-    next_piece();
-    int n = piece != order_.end() ? pieces_[*piece].left_end : kNone;
-    for (int i = 0; i < snap.samples; ++i) {
-      const double X = l0 * i / (snap.samples - 1);
-      while (piece != order_.end() && X > nodes_[pieces_[*piece].right_end].X_at(t)) {
-        ++piece;
-        next_piece();
-        if (piece != order_.end()) n = pieces_[*piece].left_end;
-      }
-      if (piece == order_.end()) break;
-      if (X < nodes_[pieces_[*piece].left_end].X_at(t)) continue;  // in no piece
-      if (is_light(*piece)) {
-        // One walk along the light piece's regions for all the samples it holds.
-        const Material& m = *nodes_[pieces_[*piece].left_end].right.material;
-        const double X_end = nodes_[pieces_[*piece].right_end].X_at(t);
-        int taken = 0;
-        walk_light(*piece, t, [&](double x_a, double, double X_a, double X_b, const State& state, bool last) {
-          for (;;) {
-            const double Xi = l0 * (i + taken) / (snap.samples - 1);
-            if (i + taken >= snap.samples || Xi > X_end || (Xi >= X_b && !last)) return;
-            const double x = x_a + (Xi - X_a) * label_density(state);
-            State smooth = state;
-            light_reconstruct(*piece, x, t, smooth);
-            for (Quantity q : snap.quantities)
-              recorder_.snapshot(SnapshotSample{t, static_cast<int>(b), Xi, q, quantity_value(q, m, smooth, Xi, x)});
-            ++taken;
-          }
-        });
-        i += std::max(taken, 1) - 1;
-        continue;
-      }
-      for (int next = nodes_[n].next;
-           next != kNone && nodes_[next].kind != NodeKind::right_end && nodes_[next].X_at(t) <= X;
-           next = nodes_[n].next)
-        n = next;
-      Region r;
-      double x = 0.0;
-      region_at(n, X, t, r, x);
-      for (Quantity q : snap.quantities)
-        recorder_.snapshot(SnapshotSample{t, static_cast<int>(b), X, q, quantity(q, r, X, x)});
-    }
+    if (!snapshot_includes(snap, scene_.bodies[b])) continue;
+    snapshot_body(snap, static_cast<int>(b), st.t);
   }
+}
+
+void Tracker::sample_probe(int index, double t) {
+  const ProbeDecl& probe = scene_.outputs.probes[index];
+  const int body = probe_body(scene_, probe);
+  Region r;
+  double x = 0.0, X = probe.X;
+  if (probe.lab_x) {
+    // The piece of the body that covers the lab position, and the label there.
+    bool covered = false;
+    for (int piece : order_) {
+      if (pieces_[piece].body != body) continue;
+      const Node& le = nodes_[pieces_[piece].left_end];
+      const Node& re = nodes_[pieces_[piece].right_end];
+      if (*probe.lab_x < le.x_at(t) || *probe.lab_x > re.x_at(t)) continue;
+      X = label_at_lab(*probe.lab_x, le.X_at(t), re.X_at(t), [&](double label) {
+        double at = 0.0;
+        return locate(body, label, t, r, at) ? at : label;
+      });
+      covered = true;
+      break;
+    }
+    if (!covered) return;
+  }
+  if (!locate(body, X, t, r, x)) return;
+  for (Quantity q : probe.quantities) recorder_.probe(ProbeSample{t, index, q, quantity(q, r, X, x)});
+}
+
+void Tracker::snapshot_body(const SnapshotDecl& snap, int b, double t) {
+  const double l0 = scene_.bodies[b].natural_length();
+  auto piece = order_.begin();
+  const auto next_piece = [&] {
+    while (piece != order_.end() && pieces_[*piece].body != b) ++piece;
+  };
+  next_piece();
+  int n = piece != order_.end() ? pieces_[*piece].left_end : kNone;
+  for (int i = 0; i < snap.samples; ++i) {
+    const double X = l0 * i / (snap.samples - 1);
+    while (piece != order_.end() && X > nodes_[pieces_[*piece].right_end].X_at(t)) {
+      ++piece;
+      next_piece();
+      if (piece != order_.end()) n = pieces_[*piece].left_end;
+    }
+    if (piece == order_.end()) break;
+    if (X < nodes_[pieces_[*piece].left_end].X_at(t)) continue;  // in no piece
+    if (is_light(*piece)) {
+      i += std::max(snapshot_light_piece(snap, b, *piece, i, t), 1) - 1;
+      continue;
+    }
+    for (int next = nodes_[n].next;
+         next != kNone && nodes_[next].kind != NodeKind::right_end && nodes_[next].X_at(t) <= X; next = nodes_[n].next)
+      n = next;
+    Region r;
+    double x = 0.0;
+    region_at(n, X, t, r, x);
+    for (Quantity q : snap.quantities) recorder_.snapshot(SnapshotSample{t, b, X, q, quantity(q, r, X, x)});
+  }
+}
+
+int Tracker::snapshot_light_piece(const SnapshotDecl& snap, int b, int piece, int i, double t) {
+  // One walk along the light piece's regions for all the samples it holds.
+  const double l0 = scene_.bodies[b].natural_length();
+  const Material& m = *nodes_[pieces_[piece].left_end].right.material;
+  const double X_end = nodes_[pieces_[piece].right_end].X_at(t);
+  int taken = 0;
+  walk_light(piece, t, [&](double x_a, double, double X_a, double X_b, const State& state, bool last) {
+    for (;;) {
+      const double Xi = l0 * (i + taken) / (snap.samples - 1);
+      if (i + taken >= snap.samples || Xi > X_end || (Xi >= X_b && !last)) return;
+      const double x = x_a + (Xi - X_a) * label_density(state);
+      State smooth = state;
+      light_reconstruct(piece, x, t, smooth);
+      for (Quantity q : snap.quantities)
+        recorder_.snapshot(SnapshotSample{t, b, Xi, q, quantity_value(q, m, smooth, Xi, x)});
+      ++taken;
+    }
+  });
+  return taken;
 }
 
 void Tracker::totals(double t, double& energy, double& momentum) const {

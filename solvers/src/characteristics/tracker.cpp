@@ -272,7 +272,43 @@ Tracker::BoundParts Tracker::error_bound_parts(double t_end) const {
   return BoundParts{error_bound, carried, error_fans_alive};
 }
 
+namespace {
+
+/// v printed with two significant digits.
+std::string two_digits(double v) {
+  std::ostringstream os;
+  os.precision(2);
+  os << v;
+  return os.str();
+}
+
+/// A number said to be above the tolerance, with the digits (two at least) that print it above
+/// the tolerance as printed: never "0.001 is above solver.tolerance = 0.001".
+std::string above_tolerance(double v, double tolerance) {
+  const double printed_tolerance = std::stod(number(tolerance));
+  for (int digits = 2; digits <= 17; ++digits) {
+    std::ostringstream os;
+    os.precision(digits);
+    os << v;
+    if (std::stod(os.str()) > printed_tolerance) return os.str();
+  }
+  return number(v);
+}
+
+}  // namespace
+
 void Tracker::report_error_bound(const BoundParts& bound) {
+  report_bound_numbers(bound);
+  report_qualitative();
+  const bool spray_coarsened = warn_spray_coarsened();
+  // A bound above the tolerance asked for: say which part holds it up and what would lower it.
+  if (scene_.solver.tolerance_given && bound.error_bound > scene_.solver.tolerance &&
+      !fan_capped_) {  // (or the fan cap says why)
+    warn_bound_above_tolerance(bound, spray_coarsened);
+  }
+}
+
+void Tracker::report_bound_numbers(const BoundParts& bound) {
   const double error_bound = bound.error_bound, carried = bound.carried, error_fans_alive = bound.error_fans_alive;
   result_.solver_numbers.emplace_back("error_bound", error_bound);
   result_.solver_numbers.emplace_back("weak_wave_threshold", policy_.weak_wave());
@@ -287,80 +323,67 @@ void Tracker::report_error_bound(const BoundParts& bound) {
   result_.solver_numbers.emplace_back("fronts_alive_max", static_cast<double>(live_fronts_max_));
   result_.solver_numbers.emplace_back("wave_resolution", policy_.coarsest_resolution());
   result_.solver_numbers.emplace_back("fan_step_max", policy_.widest_fan_step());
-  if (qualitative_cracks_ > 0) {
-    // In the scene's units, as every time a run reports.
-    const double since = from_natural(qualitative_since_, Dimension::time, scene_.units);
-    result_.solver_numbers.emplace_back("qualitative_from", since);
-    result_.solver_numbers.emplace_back("cracks_by_smooth_waves", static_cast<double>(qualitative_cracks_));
-    result_.warnings.push_back("from t = " + number(since) + " " +
-                               std::string(unit_symbol(Dimension::time, scene_.units)) +
-                               " the result is qualitative: body '" + scene_.bodies[qualitative_body_].name +
-                               "' cracked where the steps of a smooth wave decided it (" +
-                               std::to_string(qualitative_cracks_) + (qualitative_cracks_ == 1 ? " crack" : " cracks") +
-                               "), so where and when it parts, and all that follows, changes with solver.tolerance; "
-                               "the error bound does not cover it");
-  }
-  const auto two_digits = [](double v) {
-    std::ostringstream os;
-    os.precision(2);
-    os << v;
-    return os.str();
-  };
-  // A number said to be above the tolerance, with the digits (two at least) that print
-  // it above the tolerance as printed: never "0.001 is above solver.tolerance = 0.001".
-  const auto above_tolerance = [&](double v) {
-    const double printed_tolerance = std::stod(number(scene_.solver.tolerance));
-    for (int digits = 2; digits <= 17; ++digits) {
-      std::ostringstream os;
-      os.precision(digits);
-      os << v;
-      if (std::stod(os.str()) > printed_tolerance) return os.str();
-    }
-    return number(v);
-  };
+}
+
+void Tracker::report_qualitative() {
+  if (qualitative_cracks_ <= 0) return;
+  // In the scene's units, as every time a run reports.
+  const double since = from_natural(qualitative_since_, Dimension::time, scene_.units);
+  result_.solver_numbers.emplace_back("qualitative_from", since);
+  result_.solver_numbers.emplace_back("cracks_by_smooth_waves", static_cast<double>(qualitative_cracks_));
+  result_.warnings.push_back("from t = " + number(since) + " " +
+                             std::string(unit_symbol(Dimension::time, scene_.units)) +
+                             " the result is qualitative: body '" + scene_.bodies[qualitative_body_].name +
+                             "' cracked where the steps of a smooth wave decided it (" +
+                             std::to_string(qualitative_cracks_) + (qualitative_cracks_ == 1 ? " crack" : " cracks") +
+                             "), so where and when it parts, and all that follows, changes with solver.tolerance; "
+                             "the error bound does not cover it");
+}
+
+bool Tracker::warn_spray_coarsened() {
   const bool spray_coarsened = policy_.coarsest_resolution() > scene_.solver.tolerance;
   if (spray_coarsened) {
-    result_.warnings.push_back(
-        "the droplets of a spray booked " + two_digits(kStability * ledger_.droplets() / total_length_) +
-        " of the error bound, which no tolerance reduces: while they dominated, waves and "
-        "droplets were resolved more coarsely than solver.tolerance = " +
-        number(scene_.solver.tolerance) + ", at most to " + above_tolerance(policy_.coarsest_resolution()));
+    result_.warnings.push_back("the droplets of a spray booked " +
+                               two_digits(kStability * ledger_.droplets() / total_length_) +
+                               " of the error bound, which no tolerance reduces: while they dominated, waves and "
+                               "droplets were resolved more coarsely than solver.tolerance = " +
+                               number(scene_.solver.tolerance) + ", at most to " +
+                               above_tolerance(policy_.coarsest_resolution(), scene_.solver.tolerance));
   }
-  // A bound above the tolerance asked for: say which part holds it up and what would lower it.
-  if (scene_.solver.tolerance_given && error_bound > scene_.solver.tolerance &&
-      !fan_capped_) {  // (or the fan cap says why)
-    const double parts[4] = {ledger_.merges(), ledger_.fans() + error_fans_alive, ledger_.defects(),
-                             ledger_.droplets()};
-    const int largest = static_cast<int>(std::max_element(parts, parts + 4) - parts);
-    const std::string why[4] = {
-        "merges that held the live fronts to their cap (max(" + number(ResolutionPolicy::kMinFrontsPerBody) + ", " +
-            number(ResolutionPolicy::kFrontsPerBody) +
-            "/tolerance) per body): the waves scatter into more fronts than the cap lets the run follow",
-        ("the steps of smooth waves (fans and piston ramps, reconstructed between them where they "
-         "cross only each other, staircases where shocks and rigid bodies meet them; the widest step is "
-         "fan_step_max)"),
-        "weak waves held back at interfaces and contacts", "droplets kept with their pieces"};
-    // What a smaller tolerance does to each part, and at what cost.
-    static constexpr const char* kLower[4] = {
-        "a smaller tolerance raises the cap, at a cost that grows as its inverse square",
-        ("a smaller tolerance lowers it in proportion where the waves are reconstructed (and as its square root "
-         "where they are staircases), at a cost that grows as its inverse"),
-        "a smaller tolerance lowers it in proportion", "a smaller tolerance lowers it"};
-    if (!(largest == 3 && spray_coarsened)) {  // a spray has said so above
-      // What merges and fan steps made, once the waves that carry it have split at
-      // interfaces, contacts and ends, may have grown: say so where it has.
-      const double made = ledger_.merges() + ledger_.fans() + error_fans_alive;
-      const std::string grown = largest <= 1 && carried + error_fans_alive > 1.5 * made
-                                    ? " (what merges and fan steps booked grew to " +
-                                          two_digits(kStability * (carried + error_fans_alive) / total_length_) +
-                                          " as the waves carried it through interfaces, contacts and ends)"
-                                    : "";
-      result_.warnings.push_back("the error bound " + above_tolerance(error_bound) +
-                                 " is above solver.tolerance = " + number(scene_.solver.tolerance) + ": most of it (" +
-                                 two_digits(kStability * parts[largest] / total_length_) + ") booked by " +
-                                 why[largest] + grown + "; " + kLower[largest] + ", a shorter time.end in proportion");
-    }
-  }
+  return spray_coarsened;
+}
+
+void Tracker::warn_bound_above_tolerance(const BoundParts& bound, bool spray_coarsened) {
+  const double error_bound = bound.error_bound, carried = bound.carried, error_fans_alive = bound.error_fans_alive;
+  const double parts[4] = {ledger_.merges(), ledger_.fans() + error_fans_alive, ledger_.defects(), ledger_.droplets()};
+  const int largest = static_cast<int>(std::max_element(parts, parts + 4) - parts);
+  const std::string why[4] = {
+      "merges that held the live fronts to their cap (max(" + number(ResolutionPolicy::kMinFrontsPerBody) + ", " +
+          number(ResolutionPolicy::kFrontsPerBody) +
+          "/tolerance) per body): the waves scatter into more fronts than the cap lets the run follow",
+      ("the steps of smooth waves (fans and piston ramps, reconstructed between them where they "
+       "cross only each other, staircases where shocks and rigid bodies meet them; the widest step is "
+       "fan_step_max)"),
+      "weak waves held back at interfaces and contacts", "droplets kept with their pieces"};
+  // What a smaller tolerance does to each part, and at what cost.
+  static constexpr const char* kLower[4] = {
+      "a smaller tolerance raises the cap, at a cost that grows as its inverse square",
+      ("a smaller tolerance lowers it in proportion where the waves are reconstructed (and as its square root "
+       "where they are staircases), at a cost that grows as its inverse"),
+      "a smaller tolerance lowers it in proportion", "a smaller tolerance lowers it"};
+  if (largest == 3 && spray_coarsened) return;  // a spray has said so above
+  // What merges and fan steps made, once the waves that carry it have split at
+  // interfaces, contacts and ends, may have grown: say so where it has.
+  const double made = ledger_.merges() + ledger_.fans() + error_fans_alive;
+  const std::string grown = largest <= 1 && carried + error_fans_alive > 1.5 * made
+                                ? " (what merges and fan steps booked grew to " +
+                                      two_digits(kStability * (carried + error_fans_alive) / total_length_) +
+                                      " as the waves carried it through interfaces, contacts and ends)"
+                                : "";
+  result_.warnings.push_back("the error bound " + above_tolerance(error_bound, scene_.solver.tolerance) +
+                             " is above solver.tolerance = " + number(scene_.solver.tolerance) + ": most of it (" +
+                             two_digits(kStability * parts[largest] / total_length_) + ") booked by " + why[largest] +
+                             grown + "; " + kLower[largest] + ", a shorter time.end in proportion");
 }
 
 void Tracker::report_conservation(double t_end) {

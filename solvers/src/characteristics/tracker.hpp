@@ -370,6 +370,14 @@ class Tracker {
   [[nodiscard]] BoundParts error_bound_parts(double t_end) const;
   /// The solver numbers of the bound, and the warnings where it is above the tolerance.
   void report_error_bound(const BoundParts& bound);
+  /// The error bound and its parts as solver numbers, with the counts and resolutions that made them.
+  void report_bound_numbers(const BoundParts& bound);
+  /// Where smooth waves' steps decided cracks: the time from which the result is qualitative, and a warning.
+  void report_qualitative();
+  /// Warns where a spray made the run resolve waves more coarsely than the tolerance; whether it did.
+  bool warn_spray_coarsened();
+  /// Warns that the bound is above the tolerance: which part holds it up, and what would lower it.
+  void warn_bound_above_tolerance(const BoundParts& bound, bool spray_coarsened);
   /// Energy and momentum at t_end and what the books say made their changes.
   void report_conservation(double t_end);
   /// Each body's pieces at t_end: extent, energy, momentum, mean velocity.
@@ -482,11 +490,43 @@ class Tracker {
   /// material: a crowd at the point, a wave that vanishes or would part the body, a new fan
   /// to split, a star off its curves by more than the threshold, a wave faster than light.
   bool cross_in_place(int a, int b, double t, InPlace& c);
+  /// The outer regions of a crossing in place, their Ψ, and the invariants they bring (J+ left, J− right).
+  struct CrossingSides {
+    const Region* left = nullptr;
+    const Region* right = nullptr;
+    double psi_left = 0.0, psi_right = 0.0, j_plus = 0.0, j_minus = 0.0;
+  };
+  /// The two-rarefaction star of fronts a < b at t (c.X, c.star, c.psi_star), or false where it is no simple crossing.
+  bool two_rarefaction_star(int a, int b, double t, CrossingSides& s, InPlace& c);
+  /// The first guess of a genuinely nonlinear crossing's star: each wave passed on with the other invariant's jump.
+  State head_on_guess(int a, int b, const CrossingSides& s, const State& star);
+  /// The star where the wave curves meet, the waves' strengths and distances off them, or false where none serves.
+  bool star_on_curves(int a, int b, const CrossingSides& s, InPlace& c);
+  /// Holds back a C− wave weaker than the threshold (the star: the left state); false where no C+ shock is found.
+  bool hold_back_minus(const CrossingSides& s, bool shock[2], InPlace& c);
+  /// The kinds of the waves leaving a crossing, or false where one vanishes, is off its curve or is a fan to split.
+  bool outgoing_kinds(int a, int b, const CrossingSides& s, const bool shock[2], InPlace& c) const;
   /// What fronts a and b hand on to the waves leaving their crossing (c.born, c.carried,
   /// c.smooth_in): each front's carried error goes with the wave of its family, a fan step's
   /// age goes on where it leaves as the only step of its family, else its error is booked.
   void hand_on_in_place(int a, int b, double t, InPlace& c);
+  /// A crossing in place whose C− wave is held back: a leaves with its strength booked, b joins the outer states.
+  void hold_back_in_place(int a, int b, const InPlace& c, double x, double t);
+  /// The region of c's star between the fronts a < b leave a crossing with: its Ψ, and its speeds where known.
+  [[nodiscard]] Region crossing_star_region(int a, int b, const InPlace& c) const;
+  /// Sets a and b on the C− and C+ waves leaving their crossing, the star between, with their books and kinks.
+  void set_crossed_fronts(int a, int b, const InPlace& c, double x, double t);
+  /// The two fronts leaving a crossing at label X merge where cheap (merge_nearby, or merge_neighbours).
+  void merge_after_crossing(int a, int b, double X, double t);
   int merge_neighbours(int id, double t);
+  /// The left one of the cheapest pair of id and a neighbour to merge costing at most best_cost (lowered to its cost).
+  int cheapest_neighbour_merge(int id, double t, double& best_cost) const;
+  /// The kind of the front that joins left to right, and how far off its Hugoniot; false where no one front may.
+  bool merged_front_kind(const Material& m, const State& left, const State& right, int family, FrontKind& kind,
+                         double& off) const;
+  /// Puts neighbours p < q merged in place (p's left region L, q's right R): the stronger stays; returns it.
+  int apply_merge_neighbours(int p, int q, const Region& L, const Region& R, double cost, FrontKind kind, double off,
+                             double t);
   bool merge_across(int p, int q, double t);
   /// Puts merge_across's result in place: p and q leave, one front of their family enters at
   /// X_merged (in segments_[split]), the regions between take their new states, the nodes
@@ -504,6 +544,12 @@ class Tracker {
   };
   std::vector<MergeSegment> segments_;
   double merge_cost(int p, int q, double t, double* X_merged) const;
+  /// segments_ of a merge across of p < q: the regions X̄ may lie in, with their states on either side of it.
+  bool merge_segments(int p, int q, double j_before, double j_after_p, double j_after_q, bool& extend_left, double t);
+  /// The label X̄ in segments_ that keeps the lab length, and its segment; false where none lies inside them.
+  bool merged_label(double& X_merged, std::size_t& split) const;
+  /// The L1 error of a merge across at X̄: each segment's f-invariant change times the length it changes over.
+  [[nodiscard]] double merge_across_cost(std::size_t split, double X_merged, double j_before, double j_after_q) const;
   void set_front(int id, int family, FrontKind kind, const Material& m, const State& left, const State& right, double t,
                  double X, double x, double off_hugoniot, double born, double strength,
                  const FrontSpeeds* known = nullptr, const JumpLaws* laws = nullptr,
@@ -578,6 +624,15 @@ class Tracker {
   /// wave's step came in (smooth_in).
   int link_waves(const Meeting& g, const RiemannSolution& sol, int droplet, double XL, bool smooth_in, int& interface,
                  bool& parted_inside, double t);
+  /// Links the C− fronts emitted (emitted_left_) in after the left state's node; returns the left part's last node.
+  int link_left_waves(const Meeting& g, int droplet);
+  /// The node whose right region becomes the right star state (kNone: none), `cursor` the last node of the left part.
+  [[nodiscard]] int right_state_holder(const Meeting& g, int interface, int droplet, int cursor) const;
+  /// Splits the piece at a crack right of `cursor` (an interface there goes); returns the new piece's left end.
+  int crack_at_meeting(const Meeting& g, const RiemannSolution& sol, double XL, bool smooth_in, int cursor,
+                       int& interface, double t);
+  /// Links the C+ fronts emitted (emitted_right_) in after the node that holds the right star state.
+  void link_right_waves(const Meeting& g, int right_holder);
   void settle_and_schedule(const Meeting& g, int interface, bool parted_inside, int droplet, int right_holder,
                            bool parted, double t);
   /// The offsets (Node::offset) of the smooth steps resolve_group has just emitted, from those
@@ -622,6 +677,31 @@ class Tracker {
   /// wave came before, the staircase's, σ/4 of the width.
   void enter_light(std::deque<LightFront>& queue, const Node& f, double t, bool lattice);
   bool merge_light(int piece, int family, double t);
+  /// A merge of a light piece's two newest fronts of one family, as merge_light works it out.
+  struct LightMerge {
+    /// A lab extent (from, to: away from the new front's end), the other family's invariant there and this one's now.
+    struct Part {
+      double from, to, j_other, j_old;
+    };
+    int family = 0;
+    /// The family's invariant between the two fronts, ahead of the older one and behind the newer one.
+    double j_between = 0.0, j_near_old = 0.0, j_near_new = 0.0;
+    double x_old = 0.0, x_new = 0.0;     ///< the two fronts' lab positions
+    double x_limit = 0.0, x_stop = 0.0;  ///< how far the merged front may go, and how far the parts reach
+    std::vector<Part> parts;
+    /// Labels per lab length of each part: now, with j_near_new, with j_near_old.
+    std::vector<double> density_old, density_new, density_near_old;
+    double place = kInf, swept_in_split = 0.0;  ///< the merged front's lab position, and how far into its part
+    std::size_t split = 0;                      ///< the part it lies in
+  };
+  /// The parts of a light merge: the lab extents the merged front may sweep, split at the other family's fronts.
+  void light_merge_parts(int piece, double t, LightMerge& g) const;
+  /// The place of a light merge that keeps the piece's natural length, or false where there is none.
+  bool light_merge_place(int piece, LightMerge& g) const;
+  /// The L1 error of a light merge: |δJ| of its family times the natural length it changes over.
+  [[nodiscard]] double light_merge_cost(const LightMerge& g) const;
+  /// Puts a light merge in place: the older front takes the newer one's books and moves to the place; the newer leaves.
+  void apply_merge_light(int piece, const LightMerge& g, double cost, double t);
   [[nodiscard]] State light_state(const Material& m, double j_plus, double j_minus) const;
   // ---- lattice pieces (lattice.cpp) ------------------------------------------------------
   bool make_lattice(int piece, double t);
@@ -673,6 +753,12 @@ class Tracker {
   void record_segment(Node& n, double t);
   void account_front_end(int id, double t);
   void sample(const SampleTime& st);
+  /// Records probe `index` at time t: the quantities at its label, or at the label its lab position holds.
+  void sample_probe(int index, double t);
+  /// Records body b's samples of a snapshot at time t, in one walk along its pieces and their nodes.
+  void snapshot_body(const SnapshotDecl& snap, int b, double t);
+  /// Records the samples of a snapshot from the i-th on that light piece `piece` of body b holds; returns how many.
+  int snapshot_light_piece(const SnapshotDecl& snap, int b, int piece, int i, double t);
   /// The region at label X of `body` at time t, with the lab position of X.
   bool locate(int body, double X, double t, Region& region, double& x) const;
   double quantity(Quantity q, const Region& r, double X, double x) const;
