@@ -1,7 +1,9 @@
 #pragma once
 // The front tracker's state: the nodes of each piece of body (fronts, interfaces, ends),
-// walls and pistons, the event queues, the error budget, and the class whose member
-// functions the files of this folder define, one responsibility each:
+// walls and pistons, the event queues, and the class whose member functions the files of
+// this folder define, one responsibility each (docs/layout.md has the whole folder). It asks
+// the ResolutionPolicy (policy.hpp) how finely to resolve, books every error in the
+// ErrorLedger (ledger.hpp), and checks its invariants in validate.cpp:
 //   tracker.cpp       set-up and the main loop (the cost model is written there)
 //   interactions.cpp  fronts meeting: in place, or by a full Riemann problem; waves held back
 //   coarsening.cpp    merging fronts and the error of fan steps
