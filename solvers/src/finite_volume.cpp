@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "rigidity/errors.hpp"
+#include "rigidity/number_text.hpp"
 #include "rigidity/run_recorder.hpp"
 #include "rigidity/solvers/riemann.hpp"
 #include "rigidity/solvers/sampling.hpp"
@@ -32,12 +33,7 @@ constexpr int kGapClosurePasses = 4;
 /// Void fraction of a clamped cell above which the material is said to cavitate.
 constexpr double kVoidFraction = 1.0e-9;
 
-std::string number(double v) {
-  std::ostringstream os;
-  os.precision(12);
-  os << v;
-  return os.str();
-}
+std::string number(double v) { return twelve_digits(v); }
 
 /// Lab positions equal up to the round-off of summing segment lengths (as in the
 /// characteristics solver).

@@ -1,8 +1,9 @@
 #include "rigidity/parameters.hpp"
 
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
+
+#include "rigidity/number_text.hpp"
 
 namespace rigidity {
 
@@ -66,12 +67,7 @@ ParameterSpec& ParameterSpec::at_most(double v) {
 }
 
 namespace {
-std::string number_text(double v) {
-  std::ostringstream os;
-  os.precision(15);
-  os << v;
-  return os.str();
-}
+std::string number_text(double v) { return significant(v, 15); }
 }  // namespace
 
 std::string ParameterSpec::range_text() const {

@@ -7,10 +7,10 @@
 #include <exception>
 #include <mutex>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
+#include "rigidity/number_text.hpp"
 #include "rigidity/spelling.hpp"
 
 namespace rigidity {
@@ -117,12 +117,7 @@ constexpr int kAdmissibilitySamples = 256;
 /// Where an unbounded admissible range is sampled to: s in [1e-6, 1e6].
 constexpr double kUnboundedLogStretch = 13.815510557964274;  // ln 1e6
 
-std::string number_text(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
+std::string number_text(double v) { return significant(v, 6); }
 }  // namespace
 
 /// Empty if `material` is hyperbolic and causal at every sample of its admissible range (and

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <string>
 
 #include "rigidity/hyperbolic.hpp"
+#include "rigidity/number_text.hpp"
 
 namespace rigidity::characteristics {
 
@@ -119,11 +119,6 @@ bool touching(double x1, double x2) {
   return std::abs(x1 - x2) <= 64.0 * kEps * std::max({1.0, std::abs(x1), std::abs(x2)});
 }
 
-std::string number(double v) {
-  std::ostringstream os;
-  os.precision(12);
-  os << v;
-  return os.str();
-}
+std::string number(double v) { return twelve_digits(v); }
 
 }  // namespace rigidity::characteristics

@@ -7,11 +7,11 @@
 #include <cstdint>
 #include <exception>
 #include <limits>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "rigidity/errors.hpp"
+#include "rigidity/number_text.hpp"
 #include "rigidity/run_recorder.hpp"
 #include "rigidity/solvers/characteristics.hpp"
 #include "rigidity/units.hpp"
@@ -274,23 +274,13 @@ Tracker::BoundParts Tracker::error_bound_parts(double t_end) const {
 
 namespace {
 
-/// v printed with two significant digits.
-std::string two_digits(double v) {
-  std::ostringstream os;
-  os.precision(2);
-  os << v;
-  return os.str();
-}
-
 /// A number said to be above the tolerance, with the digits (two at least) that print it above
 /// the tolerance as printed: never "0.001 is above solver.tolerance = 0.001".
 std::string above_tolerance(double v, double tolerance) {
   const double printed_tolerance = std::stod(number(tolerance));
   for (int digits = 2; digits <= 17; ++digits) {
-    std::ostringstream os;
-    os.precision(digits);
-    os << v;
-    if (std::stod(os.str()) > printed_tolerance) return os.str();
+    const std::string text = significant(v, digits);
+    if (std::stod(text) > printed_tolerance) return text;
   }
   return number(v);
 }
@@ -344,7 +334,7 @@ bool Tracker::warn_spray_coarsened() {
   const bool spray_coarsened = policy_.coarsest_resolution() > scene_.solver.tolerance;
   if (spray_coarsened) {
     result_.warnings.push_back("the droplets of a spray booked " +
-                               two_digits(kStability * ledger_.droplets() / total_length_) +
+                               significant(kStability * ledger_.droplets() / total_length_, 2) +
                                " of the error bound, which no tolerance reduces: while they dominated, waves and "
                                "droplets were resolved more coarsely than solver.tolerance = " +
                                number(scene_.solver.tolerance) + ", at most to " +
@@ -377,13 +367,13 @@ void Tracker::warn_bound_above_tolerance(const BoundParts& bound, bool spray_coa
   const double made = ledger_.merges() + ledger_.fans() + error_fans_alive;
   const std::string grown = largest <= 1 && carried + error_fans_alive > 1.5 * made
                                 ? " (what merges and fan steps booked grew to " +
-                                      two_digits(kStability * (carried + error_fans_alive) / total_length_) +
+                                      significant(kStability * (carried + error_fans_alive) / total_length_, 2) +
                                       " as the waves carried it through interfaces, contacts and ends)"
                                 : "";
   result_.warnings.push_back("the error bound " + above_tolerance(error_bound, scene_.solver.tolerance) +
                              " is above solver.tolerance = " + number(scene_.solver.tolerance) + ": most of it (" +
-                             two_digits(kStability * parts[largest] / total_length_) + ") booked by " + why[largest] +
-                             grown + "; " + kLower[largest] + ", a shorter time.end in proportion");
+                             significant(kStability * parts[largest] / total_length_, 2) + ") booked by " +
+                             why[largest] + grown + "; " + kLower[largest] + ", a shorter time.end in proportion");
 }
 
 void Tracker::report_conservation(double t_end) {

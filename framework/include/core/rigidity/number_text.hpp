@@ -19,14 +19,17 @@ namespace rigidity {
   return std::string(digits.data(), result.ptr);
 }
 
-/// Twelve significant digits: where a message names a stretch or a law's value that was found
-/// by a search or a table, whose last digits say nothing.
-[[nodiscard]] inline std::string twelve_digits(double value) {
+/// `digits` significant digits, as a stream prints them.
+[[nodiscard]] inline std::string significant(double value, int digits) {
   std::ostringstream os;
-  os.precision(12);
+  os.precision(digits);
   os << value;
   return os.str();
 }
+
+/// Twelve significant digits: where a message names a stretch or a law's value that was found
+/// by a search or a table, whose last digits say nothing.
+[[nodiscard]] inline std::string twelve_digits(double value) { return significant(value, 12); }
 
 /// A value given in natural units, written in the scene's units with its unit ("17.6 L/c",
 /// "3e-08 s"); a speed of an SI scene also as a fraction of c ("6000 m/s (2.0e-05 c)").
