@@ -6,15 +6,7 @@
 # scripts/test.sh or scripts/main.sh). A few seconds.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-if [ -z "${RIGIDITY:-}" ]; then
-  for candidate in build-tests/rigidity build/rigidity; do
-    if [ -x "$candidate" ]; then RIGIDITY=$candidate; break; fi
-  done
-fi
-if [ -z "${RIGIDITY:-}" ] || [ ! -x "$RIGIDITY" ]; then
-  echo "compare_figures: no rigidity executable (build it with scripts/test.sh or scripts/main.sh, or set RIGIDITY)" >&2
-  exit 1
-fi
+source scripts/find_rigidity.sh compare_figures
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 "$RIGIDITY" compare --materials rigid,hooke,rigid_fluid,constant_sound_speed --out "$out" >/dev/null

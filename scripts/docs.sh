@@ -10,15 +10,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 
-if [ -z "${RIGIDITY:-}" ]; then
-  for candidate in build-tests/rigidity build/rigidity; do
-    if [ -x "$candidate" ]; then RIGIDITY=$candidate; break; fi
-  done
-fi
-if [ -z "${RIGIDITY:-}" ] || [ ! -x "$RIGIDITY" ]; then
-  echo "docs: no rigidity executable (build it with scripts/test.sh or scripts/main.sh, or set RIGIDITY)" >&2
-  exit 1
-fi
+source scripts/find_rigidity.sh docs
 export RIGIDITY=$(realpath "$RIGIDITY")
 
 for scene in examples/tutorial/*.yaml; do
