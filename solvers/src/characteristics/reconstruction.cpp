@@ -15,13 +15,17 @@ namespace {
 struct Ramp {
   double c0 = 0.0, q = 0.0, X0 = 0.0;
   int sign = 0;
+  double from = -kInf, to = kInf;  ///< where it applies
 
   [[nodiscard]] double at(double X) const {
+    if (X < from || X > to) return 0.0;
     const double c = c0 + q * (X - X0);
     return sign != 0 && sign * c <= 0.0 ? 0.0 : c;
   }
   /// ∫ c(X) dX over [a, b].
   [[nodiscard]] double integral(double a, double b) const {
+    a = std::max(a, from);
+    b = std::min(b, to);
     if (sign != 0 && q != 0.0) {
       const double zero = X0 - c0 / q;
       if (sign * q > 0.0) {
@@ -91,6 +95,34 @@ Tracker::Wedge Tracker::wedge(int a, int b, int family, double t) const {
   return {(at_b - at_a) / width, at_a};
 }
 
+/// The nearest riding step of `family` whose jump has the sign `sign`, from node `from` on,
+/// walking by `step` past fronts (kNone: an end, an interface, a sharp front or kMaxRidingWalk
+/// nodes come first).
+int Tracker::riding_step(int from, int family, int sign, int Node::*step) const {
+  int id = from;
+  for (int k = 0; k < kMaxRidingWalk && id != kNone; ++k, id = nodes_[id].*step) {
+    const Node& n = nodes_[id];
+    if (n.kind != NodeKind::front || !n.smooth) return kNone;
+    if (superposed(id, family) && own_jump(id) * sign > 0.0) return id;
+  }
+  return kNone;
+}
+
+Tracker::Wedge Tracker::riding_wedge(int n, double X, int family, int sign, double t) const {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const int a = riding_step(n, family, sign, &Node::prev);
+  const int b = a == kNone ? kNone : riding_step(nodes_[n].next, family, sign, &Node::next);
+  if (b == kNone) return {kNaN, kNaN};
+  const int a2 = riding_step(nodes_[a].prev, family, sign, &Node::prev);
+  const int b2 = riding_step(nodes_[b].next, family, sign, &Node::next);
+  const double Xa = nodes_[a].X_at(t), Xb = nodes_[b].X_at(t);
+  const double left = a2 != kNone ? Xa - nodes_[a2].X_at(t) : kInf;
+  const double right = b2 != kNone ? nodes_[b2].X_at(t) - Xb : kInf;
+  const Line line = line_through(own_jump(a), own_jump(b), Xb - Xa, left, right, kPlateauRatio);
+  if (std::isnan(line.slope) || !(X >= Xa && X <= Xb)) return {kNaN, kNaN};
+  return {line.slope, line.at_a, Xa, Xb};
+}
+
 /// For each family, the strip of the region right of node n between the nearest fronts of
 /// that family (or what bounds the strip: an end, an interface, a true jump), and on it:
 ///   - between two steps of one smooth wave, the line through their values (wedge);
@@ -128,7 +160,7 @@ bool Tracker::reconstruct(int n, double X, double t, State& state, double& dx) c
     const int r = strip_edge(node.next, family, &Node::next);
     const double Xl = nodes_[l].X_at(t), Xr = nodes_[r].X_at(t);
     if (!(Xr > Xl)) continue;
-    Ramp ramps[2];
+    Ramp ramps[4];
     int count = 0;
     if (is_step(l, family) && is_step(r, family)) {
       const Wedge w = wedge(l, r, family, t);
@@ -151,6 +183,14 @@ bool Tracker::reconstruct(int n, double X, double t, State& state, double& dx) c
       const bool on = reflecting(r, -family) && Xr - Xl <= kPlateauRatio * (Xl - X2);
       if (w.slope * jump > 0.0)
         ramps[count++] = Ramp{w.at_a + w.slope * (Xl - X2) - jump, w.slope, Xl, on ? 0 : jump > 0.0 ? -1 : 1};
+    }
+    // A train of weak steps riding on the wave (superposed: each a jump on top of its line) is
+    // a weak smooth wave of its own: drawn as the line through its steps' values between the two
+    // of them around X, not as their staircase.
+    for (int sign : {-1, +1}) {
+      const Wedge riding = riding_wedge(n, X, family, sign, t);
+      if (!std::isnan(riding.slope))
+        ramps[count++] = Ramp{riding.at_a, riding.slope, riding.from, 0, riding.from, riding.to};
     }
     if (count == 0) continue;
     double to_X = 0.0, to_r = 0.0;
@@ -251,6 +291,30 @@ bool Tracker::light_reconstruct(int piece, double x, double t, State& state) con
       while (i >= 0 && i < n && riding(i)) i += by;
       return i >= 0 && i < n ? i : static_cast<long>(kNone);
     };
+    // A train of riding steps of one sign is a weak smooth wave of its own (see riding_wedge):
+    // the line through its steps' values on top of the region's value.
+    for (int sign : {-1, +1}) {
+      // The nearest riding step of this sign from index i on, walking by `by` (kNone: a true
+      // jump or kMaxRidingWalk fronts come first).
+      const auto train = [&](long i, long by) {
+        for (int walked = 0; walked < kMaxRidingWalk && i >= 0 && i < n; ++walked, i += by) {
+          if (!q[i].smooth) break;
+          if (riding(i) && sign * (right_of(i) - left_of(i)) > 0.0) return i;
+        }
+        return static_cast<long>(kNone);
+      };
+      const long ra = train(family > 0 ? k : k - 1, leftwards);
+      const long rb = ra == kNone ? kNone : train(family > 0 ? k - 1 : k, -leftwards);
+      if (rb == kNone) continue;
+      const long ra2 = train(ra + leftwards, leftwards), rb2 = train(rb - leftwards, -leftwards);
+      const double Xa = at(ra), Xb = at(rb);
+      const Line train_line =
+          line_through(right_of(ra) - left_of(ra), right_of(rb) - left_of(rb), Xb - Xa,
+                       ra2 != kNone ? Xa - at(ra2) : kInf, rb2 != kNone ? at(rb2) - Xb : kInf, kPlateauRatio);
+      if (std::isnan(train_line.slope)) continue;
+      j[family > 0 ? 1 : 0] += train_line.at_a + train_line.slope * (x - Xa);
+      changed = true;
+    }
     const long a = edge(family > 0 ? k : k - 1, leftwards), b = edge(family > 0 ? k - 1 : k, -leftwards);
     if (a == kNone || b == kNone || !q[a].smooth || !q[b].smooth) continue;
     const long a2 = edge(a + leftwards, leftwards), b2 = edge(b - leftwards, -leftwards);
