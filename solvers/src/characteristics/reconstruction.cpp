@@ -95,26 +95,26 @@ Tracker::Wedge Tracker::wedge(int a, int b, int family, double t) const {
   return {(at_b - at_a) / width, at_a};
 }
 
-/// The nearest riding step of `family` whose jump has the sign `sign`, from node `from` on,
-/// walking by `step` past fronts (kNone: an end, an interface, a sharp front or kMaxRidingWalk
-/// nodes come first).
-int Tracker::riding_step(int from, int family, int sign, int Node::*step) const {
+/// The nearest step of `family` whose jump has the sign `sign` and which rides on the wave
+/// (superposed) or not as `weak` says, from node `from` on, walking by `step` past smooth fronts
+/// (kNone: an end, an interface, a true jump or kMaxTrainWalk nodes come first).
+int Tracker::train_step(int from, int family, int sign, bool weak, int Node::*step) const {
   int id = from;
-  for (int k = 0; k < kMaxRidingWalk && id != kNone; ++k, id = nodes_[id].*step) {
+  for (int k = 0; k < kMaxTrainWalk && id != kNone; ++k, id = nodes_[id].*step) {
     const Node& n = nodes_[id];
     if (n.kind != NodeKind::front || !n.smooth) return kNone;
-    if (superposed(id, family) && own_jump(id) * sign > 0.0) return id;
+    if (n.family == family && superposed(id, family) == weak && own_jump(id) * sign > 0.0) return id;
   }
   return kNone;
 }
 
-Tracker::Wedge Tracker::riding_wedge(int n, double X, int family, int sign, double t) const {
+Tracker::Wedge Tracker::train_wedge(int n, double X, int family, int sign, bool weak, double t) const {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  const int a = riding_step(n, family, sign, &Node::prev);
-  const int b = a == kNone ? kNone : riding_step(nodes_[n].next, family, sign, &Node::next);
+  const int a = train_step(n, family, sign, weak, &Node::prev);
+  const int b = a == kNone ? kNone : train_step(nodes_[n].next, family, sign, weak, &Node::next);
   if (b == kNone) return {kNaN, kNaN};
-  const int a2 = riding_step(nodes_[a].prev, family, sign, &Node::prev);
-  const int b2 = riding_step(nodes_[b].next, family, sign, &Node::next);
+  const int a2 = train_step(nodes_[a].prev, family, sign, weak, &Node::prev);
+  const int b2 = train_step(nodes_[b].next, family, sign, weak, &Node::next);
   const double Xa = nodes_[a].X_at(t), Xb = nodes_[b].X_at(t);
   const double left = a2 != kNone ? Xa - nodes_[a2].X_at(t) : kInf;
   const double right = b2 != kNone ? nodes_[b2].X_at(t) - Xb : kInf;
@@ -160,11 +160,31 @@ bool Tracker::reconstruct(int n, double X, double t, State& state, double& dx) c
     const int r = strip_edge(node.next, family, &Node::next);
     const double Xl = nodes_[l].X_at(t), Xr = nodes_[r].X_at(t);
     if (!(Xr > Xl)) continue;
-    Ramp ramps[4];
+    Ramp ramps[5];
     int count = 0;
+    bool interleaved = false;
     if (is_step(l, family) && is_step(r, family)) {
-      const Wedge w = wedge(l, r, family, t);
-      if (!std::isnan(w.slope)) ramps[count++] = Ramp{w.at_a, w.slope, Xl, 0};
+      // Steps of both signs among the two around X and their neighbours: two smooth waves of
+      // the family superposed, their steps interleaved (in a linearly degenerate body they run
+      // side by side for ever), or an extremum where one wave ends and the next begins. Each
+      // wave is the line through the steps of its own sign; at an extremum neither line reaches
+      // X and the plateau stands, each wave's line carried on to it (below).
+      const int l2 = strip_edge(nodes_[l].prev, family, &Node::prev);
+      const int r2 = strip_edge(nodes_[r].next, family, &Node::next);
+      const double sign_l = own_jump(l);
+      const bool mixed = sign_l * own_jump(r) < 0.0 || (is_step(l2, family) && sign_l * own_jump(l2) < 0.0) ||
+                         (is_step(r2, family) && sign_l * own_jump(r2) < 0.0);
+      if (!mixed) {
+        const Wedge w = wedge(l, r, family, t);
+        if (!std::isnan(w.slope)) ramps[count++] = Ramp{w.at_a, w.slope, Xl, 0};
+      } else {
+        for (int sign : {-1, +1}) {
+          const Wedge train = train_wedge(n, X, family, sign, false, t);
+          if (!std::isnan(train.slope))
+            ramps[count++] = Ramp{train.at_a, train.slope, train.from, 0, train.from, train.to};
+        }
+        interleaved = count > 0;
+      }
     }
     // (A step still on the line of its centred fan has the exact fan beyond it, see fan_sample.)
     if (count == 0 && is_step(r, family) && nodes_[r].fan == kNone) {  // a wave right of the plateau
@@ -175,7 +195,7 @@ bool Tracker::reconstruct(int n, double X, double t, State& state, double& dx) c
       if (w.slope * jump > 0.0) ramps[count++] = Ramp{w.at_a + jump, w.slope, Xr, on ? 0 : jump > 0.0 ? 1 : -1};
     }
     const bool in_wedge = count == 1 && ramps[0].sign == 0;
-    if (!in_wedge && is_step(l, family) && nodes_[l].fan == kNone) {  // a wave left of the plateau
+    if (!in_wedge && !interleaved && is_step(l, family) && nodes_[l].fan == kNone) {  // a wave left of the plateau
       const int l2 = strip_edge(nodes_[l].prev, family, &Node::prev);
       const Wedge w = is_step(l2, family) ? wedge(l2, l, family, t) : Wedge{};
       const double jump = own_jump(l);
@@ -188,7 +208,7 @@ bool Tracker::reconstruct(int n, double X, double t, State& state, double& dx) c
     // a weak smooth wave of its own: drawn as the line through its steps' values between the two
     // of them around X, not as their staircase.
     for (int sign : {-1, +1}) {
-      const Wedge riding = riding_wedge(n, X, family, sign, t);
+      const Wedge riding = train_wedge(n, X, family, sign, true, t);
       if (!std::isnan(riding.slope))
         ramps[count++] = Ramp{riding.at_a, riding.slope, riding.from, 0, riding.from, riding.to};
     }
@@ -291,38 +311,54 @@ bool Tracker::light_reconstruct(int piece, double x, double t, State& state) con
       while (i >= 0 && i < n && riding(i)) i += by;
       return i >= 0 && i < n ? i : static_cast<long>(kNone);
     };
-    // A train of riding steps of one sign is a weak smooth wave of its own (see riding_wedge):
-    // the line through its steps' values on top of the region's value.
-    for (int sign : {-1, +1}) {
-      // The nearest riding step of this sign from index i on, walking by `by` (kNone: a true
-      // jump or kMaxRidingWalk fronts come first).
-      const auto train = [&](long i, long by) {
-        for (int walked = 0; walked < kMaxRidingWalk && i >= 0 && i < n; ++walked, i += by) {
-          if (!q[i].smooth) break;
-          if (riding(i) && sign * (right_of(i) - left_of(i)) > 0.0) return i;
+    const auto jump = [&](long i) { return right_of(i) - left_of(i); };
+    // The line through the steps of one sign around x, the riding ones or the others as `weak`
+    // says, relative to the staircase of their jumps (see train_wedge; NaN: none reaches x).
+    const auto train = [&](int sign, bool weak) {
+      const auto step = [&](long i, long by) {  // from index i on, walking by `by`
+        for (int walked = 0; walked < kMaxTrainWalk && i >= 0 && i < n; ++walked, i += by) {
+          if (!q[i].smooth) break;  // a true jump
+          if (riding(i) == weak && sign * jump(i) > 0.0) return i;
         }
         return static_cast<long>(kNone);
       };
-      const long ra = train(family > 0 ? k : k - 1, leftwards);
-      const long rb = ra == kNone ? kNone : train(family > 0 ? k - 1 : k, -leftwards);
-      if (rb == kNone) continue;
-      const long ra2 = train(ra + leftwards, leftwards), rb2 = train(rb - leftwards, -leftwards);
-      const double Xa = at(ra), Xb = at(rb);
-      const Line train_line =
-          line_through(right_of(ra) - left_of(ra), right_of(rb) - left_of(rb), Xb - Xa,
-                       ra2 != kNone ? Xa - at(ra2) : kInf, rb2 != kNone ? at(rb2) - Xb : kInf, kPlateauRatio);
-      if (std::isnan(train_line.slope)) continue;
-      j[family > 0 ? 1 : 0] += train_line.at_a + train_line.slope * (x - Xa);
+      const long ta = step(family > 0 ? k : k - 1, leftwards);
+      const long tb = ta == kNone ? kNone : step(family > 0 ? k - 1 : k, -leftwards);
+      if (tb == kNone) return std::numeric_limits<double>::quiet_NaN();
+      const long ta2 = step(ta + leftwards, leftwards), tb2 = step(tb - leftwards, -leftwards);
+      const double Xa = at(ta), Xb = at(tb);
+      const Line train_line = line_through(jump(ta), jump(tb), Xb - Xa, ta2 != kNone ? Xa - at(ta2) : kInf,
+                                           tb2 != kNone ? at(tb2) - Xb : kInf, kPlateauRatio);
+      return train_line.at_a + train_line.slope * (x - Xa);
+    };
+    // A train of riding steps of one sign is a weak smooth wave of its own, on top of the
+    // region's value.
+    for (int sign : {-1, +1}) {
+      const double riding_line = train(sign, true);
+      if (std::isnan(riding_line)) continue;
+      j[family > 0 ? 1 : 0] += riding_line;
       changed = true;
     }
     const long a = edge(family > 0 ? k : k - 1, leftwards), b = edge(family > 0 ? k - 1 : k, -leftwards);
     if (a == kNone || b == kNone || !q[a].smooth || !q[b].smooth) continue;
     const long a2 = edge(a + leftwards, leftwards), b2 = edge(b - leftwards, -leftwards);
+    // Steps of both signs among these: waves of the family superposed, or an extremum (see
+    // reconstruct): each is the line through the steps of its own sign.
+    const bool mixed = jump(a) * jump(b) < 0.0 || (a2 != kNone && q[a2].smooth && jump(a) * jump(a2) < 0.0) ||
+                       (b2 != kNone && q[b2].smooth && jump(a) * jump(b2) < 0.0);
+    if (mixed) {
+      for (int sign : {-1, +1}) {
+        const double wave_line = train(sign, false);
+        if (std::isnan(wave_line)) continue;
+        j[family > 0 ? 1 : 0] += wave_line;
+        changed = true;
+      }
+      continue;
+    }
     const double Xa = at(a), Xb = at(b), width = Xb - Xa;
     const double left = a2 != kNone && q[a2].smooth ? Xa - at(a2) : kInf;
     const double right = b2 != kNone && q[b2].smooth ? at(b2) - Xb : kInf;
-    const Line line =
-        line_through(right_of(a) - left_of(a), right_of(b) - left_of(b), width, left, right, kPlateauRatio);
+    const Line line = line_through(jump(a), jump(b), width, left, right, kPlateauRatio);
     if (std::isnan(line.slope)) continue;
     // The region's own value carries the riding steps between a and x as the jumps they are.
     j[family > 0 ? 1 : 0] += line.at_a + line.slope * (x - Xa);

@@ -865,15 +865,16 @@ class Tracker {
   /// steps of opposite jumps (an extremum where two waves meet), or holding another material.
   struct Wedge {
     double slope = std::numeric_limits<double>::quiet_NaN(), at_a = 0.0;
-    double from = 0.0, to = 0.0;  ///< riding_wedge: the labels of its two steps
+    double from = 0.0, to = 0.0;  ///< train_wedge: the labels of its two steps
   };
-  /// The line of a train of riding steps of `family` (superposed) over the strip between the
-  /// two of them around label X (X in the region right of node n), relative to the staircase
-  /// of their jumps: NaN where X has no riding step of the family on either side within
-  /// kMaxRidingWalk nodes, or the strip is no part of a train (see line_through).
-  [[nodiscard]] Wedge riding_wedge(int n, double X, int family, int sign, double t) const;
-  [[nodiscard]] int riding_step(int from, int family, int sign, int Node::*step) const;
-  static constexpr int kMaxRidingWalk = 64;
+  /// The line of a train of steps of `family` of one sign, the weak ones riding on the wave
+  /// (superposed) or the others as `weak` says, over the strip between the two of them around
+  /// label X (X in the region right of node n), relative to the staircase of their jumps: NaN
+  /// where X has no such step on either side within kMaxTrainWalk nodes, or the strip is no
+  /// part of a train (see line_through).
+  [[nodiscard]] Wedge train_wedge(int n, double X, int family, int sign, bool weak, double t) const;
+  [[nodiscard]] int train_step(int from, int family, int sign, bool weak, int Node::*step) const;
+  static constexpr int kMaxTrainWalk = 64;
   [[nodiscard]] Wedge wedge(int a, int b, int family, double t) const;
   static constexpr double kPlateauRatio = 3.0;
   /// The state at label X of the region right of node n with the smooth waves through it
