@@ -293,82 +293,126 @@ bool Tracker::light_reconstruct(int piece, double x, double t, State& state) con
   const Material& m = *nodes_[lp.store].right.material;
   double j[2] = {invariant(m, state, -1), invariant(m, state, +1)};  // [0] J−, [1] J+
   bool changed = false;
-  for (int family : {-1, +1}) {
-    const std::deque<LightFront>& q = family > 0 ? lp.plus : lp.minus;
-    const auto at = [&](long i) { return q[static_cast<std::size_t>(i)].x_at(t, family); };
-    // Each front's value on its left and on its right: a C+ front runs into j_ahead on its right.
-    const auto left_of = [&](long i) { return family > 0 ? q[i].j_behind : q[i].j_ahead; };
-    const auto right_of = [&](long i) { return family > 0 ? q[i].j_ahead : q[i].j_behind; };
-    // As on a node piece (strip_edge): a weak smooth step riding on the wave is a jump on top
-    // of its line, not one of the steps the line is drawn through.
-    const auto riding = [&](long i) {
-      return q[i].smooth && std::abs(right_of(i) - left_of(i)) < kSuperposed * policy_.fan_step();
-    };
-    // C+ fronts stand right to left in their queue, C− fronts left to right.
-    const long n = static_cast<long>(q.size()), leftwards = family > 0 ? 1 : -1;
-    long k = 0;  // C+: fronts right of x; C−: fronts at or left of x
-    while (k < n && (family > 0 ? at(k) > x : at(k) <= x)) ++k;
-    // The nearest front from index i on, walking by `by`, that is not riding (kNone: none).
-    const auto edge = [&](long i, long by) {
-      while (i >= 0 && i < n && riding(i)) i += by;
-      return i >= 0 && i < n ? i : static_cast<long>(kNone);
-    };
-    const auto jump = [&](long i) { return right_of(i) - left_of(i); };
-    // The line through the steps of one sign around x, the riding ones or the others as `weak`
-    // says, relative to the staircase of their jumps (see train_wedge; NaN: none reaches x).
-    const auto train = [&](int sign, bool weak) {
-      const auto step = [&](long i, long by) {  // from index i on, walking by `by`
-        for (int walked = 0; walked < kMaxTrainWalk && i >= 0 && i < n; ++walked, i += by) {
-          if (!q[i].smooth) break;  // a true jump
-          if (riding(i) == weak && sign * jump(i) > 0.0) return i;
-        }
-        return static_cast<long>(kNone);
-      };
-      const long ta = step(family > 0 ? k : k - 1, leftwards);
-      const long tb = ta == kNone ? kNone : step(family > 0 ? k - 1 : k, -leftwards);
-      if (tb == kNone) return std::numeric_limits<double>::quiet_NaN();
-      const long ta2 = step(ta + leftwards, leftwards), tb2 = step(tb - leftwards, -leftwards);
-      const double Xa = at(ta), Xb = at(tb);
-      const Line train_line = line_through(jump(ta), jump(tb), Xb - Xa, ta2 != kNone ? Xa - at(ta2) : kInf,
-                                           tb2 != kNone ? at(tb2) - Xb : kInf, kPlateauRatio);
-      return train_line.at_a + train_line.slope * (x - Xa);
-    };
-    // A train of riding steps of one sign is a weak smooth wave of its own, on top of the
-    // region's value.
-    for (int sign : {-1, +1}) {
-      const double riding_line = train(sign, true);
-      if (std::isnan(riding_line)) continue;
-      j[family > 0 ? 1 : 0] += riding_line;
-      changed = true;
-    }
-    const long a = edge(family > 0 ? k : k - 1, leftwards), b = edge(family > 0 ? k - 1 : k, -leftwards);
-    if (a == kNone || b == kNone || !q[a].smooth || !q[b].smooth) continue;
-    const long a2 = edge(a + leftwards, leftwards), b2 = edge(b - leftwards, -leftwards);
-    // Steps of both signs among these: waves of the family superposed, or an extremum (see
-    // reconstruct): each is the line through the steps of its own sign.
-    const bool mixed = jump(a) * jump(b) < 0.0 || (a2 != kNone && q[a2].smooth && jump(a) * jump(a2) < 0.0) ||
-                       (b2 != kNone && q[b2].smooth && jump(a) * jump(b2) < 0.0);
-    if (mixed) {
-      for (int sign : {-1, +1}) {
-        const double wave_line = train(sign, false);
-        if (std::isnan(wave_line)) continue;
-        j[family > 0 ? 1 : 0] += wave_line;
-        changed = true;
-      }
-      continue;
-    }
-    const double Xa = at(a), Xb = at(b), width = Xb - Xa;
-    const double left = a2 != kNone && q[a2].smooth ? Xa - at(a2) : kInf;
-    const double right = b2 != kNone && q[b2].smooth ? at(b2) - Xb : kInf;
-    const Line line = line_through(jump(a), jump(b), width, left, right, kPlateauRatio);
-    if (std::isnan(line.slope)) continue;
-    // The region's own value carries the riding steps between a and x as the jumps they are.
-    j[family > 0 ? 1 : 0] += line.at_a + line.slope * (x - Xa);
-    changed = true;
-  }
+  for (int family : {-1, +1}) changed = light_line(piece, family, x, t, j[family > 0 ? 1 : 0]) || changed;
   if (!changed) return false;
   state = light_state(m, j[1], j[0]);
   return true;
+}
+
+bool Tracker::light_line(int piece, int family, double x, double t, double& j) const {
+  const LightPiece& lp = light_[piece];
+  const std::deque<LightFront>& q = family > 0 ? lp.plus : lp.minus;
+  const auto at = [&](long i) { return q[static_cast<std::size_t>(i)].x_at(t, family); };
+  // Each front's value on its left and on its right: a C+ front runs into j_ahead on its right.
+  const auto left_of = [&](long i) { return family > 0 ? q[i].j_behind : q[i].j_ahead; };
+  const auto right_of = [&](long i) { return family > 0 ? q[i].j_ahead : q[i].j_behind; };
+  const auto jump = [&](long i) { return right_of(i) - left_of(i); };
+  // As on a node piece (strip_edge): a weak smooth step riding on the wave is a jump on top
+  // of its line, not one of the steps the line is drawn through.
+  const auto riding = [&](long i) { return q[i].smooth && std::abs(jump(i)) < kSuperposed * policy_.fan_step(); };
+  // C+ fronts stand right to left in their queue, C− fronts left to right.
+  const long n = static_cast<long>(q.size()), leftwards = family > 0 ? 1 : -1;
+  long k = 0;  // C+: fronts right of x; C−: fronts at or left of x
+  while (k < n && (family > 0 ? at(k) > x : at(k) <= x)) ++k;
+  const long left_start = family > 0 ? k : k - 1, right_start = family > 0 ? k - 1 : k;
+  // The nearest front from index i on, walking by `by`, that is not riding (kNone: none).
+  const auto edge = [&](long i, long by) {
+    while (i >= 0 && i < n && riding(i)) i += by;
+    return i >= 0 && i < n ? i : static_cast<long>(kNone);
+  };
+  // The line through the steps of one sign around x, the riding ones or the others as `weak`
+  // says, relative to the staircase of their jumps (see train_wedge; NaN: none reaches x).
+  const auto train = [&](int sign, bool weak) {
+    const auto step = [&](long i, long by) {  // from index i on, walking by `by`
+      for (int walked = 0; walked < kMaxTrainWalk && i >= 0 && i < n; ++walked, i += by) {
+        if (!q[i].smooth) break;  // a true jump
+        if (riding(i) == weak && sign * jump(i) > 0.0) return i;
+      }
+      return static_cast<long>(kNone);
+    };
+    const long ta = step(left_start, leftwards);
+    const long tb = ta == kNone ? kNone : step(right_start, -leftwards);
+    if (tb == kNone) return std::numeric_limits<double>::quiet_NaN();
+    const long ta2 = step(ta + leftwards, leftwards), tb2 = step(tb - leftwards, -leftwards);
+    const double Xa = at(ta), Xb = at(tb);
+    const Line train_line = line_through(jump(ta), jump(tb), Xb - Xa, ta2 != kNone ? Xa - at(ta2) : kInf,
+                                         tb2 != kNone ? at(tb2) - Xb : kInf, kPlateauRatio);
+    return train_line.at_a + train_line.slope * (x - Xa);
+  };
+  const double before = j;
+  // A train of riding steps of one sign is a weak smooth wave of its own, on top of the
+  // region's value.
+  for (int sign : {-1, +1}) {
+    const double riding_line = train(sign, true);
+    if (!std::isnan(riding_line)) j += riding_line;
+  }
+  const long a = edge(left_start, leftwards), b = edge(right_start, -leftwards);
+  const long a2 = a == kNone ? kNone : edge(a + leftwards, leftwards);
+  const long b2 = b == kNone ? kNone : edge(b - leftwards, -leftwards);
+  const auto step_of = [&](long i) { return i != kNone && q[i].smooth; };
+  if (step_of(a) && step_of(b)) {
+    // Steps of both signs among these: waves of the family superposed, or an extremum (see
+    // reconstruct): each is the line through the steps of its own sign.
+    const bool mixed = jump(a) * jump(b) < 0.0 || (step_of(a2) && jump(a) * jump(a2) < 0.0) ||
+                       (step_of(b2) && jump(a) * jump(b2) < 0.0);
+    double wave_line = 0.0;
+    bool drawn = false;
+    if (mixed) {
+      for (int sign : {-1, +1}) {
+        const double line = train(sign, false);
+        if (!std::isnan(line)) wave_line += line, drawn = true;
+      }
+    } else {
+      const double Xa = at(a), Xb = at(b);
+      const Line line = line_through(jump(a), jump(b), Xb - Xa, step_of(a2) ? Xa - at(a2) : kInf,
+                                     step_of(b2) ? at(b2) - Xb : kInf, kPlateauRatio);
+      // The region's own value carries the riding steps between a and x as the jumps they are.
+      if (!std::isnan(line.slope)) wave_line = line.at_a + line.slope * (x - Xa), drawn = true;
+    }
+    if (drawn) {
+      j += wave_line;
+      return true;
+    }
+  }
+  // No line reaches x: it lies on a plateau (between two waves, or between a wave and an end).
+  // A wave beside it carries on the line of its first strip into it until the line meets the
+  // plateau's value, or to the end where the wave is reflecting there (the fronts of the other
+  // family nearest that end are smooth) and the plateau is no wider than kPlateauRatio of that
+  // strip (as on a node piece, see reconstruct).
+  const Piece& pc = pieces_[piece];
+  const double x_left = a != kNone ? at(a) : nodes_[pc.left_end].x_at(t);
+  const double x_right = b != kNone ? at(b) : nodes_[pc.right_end].x_at(t);
+  const auto reflecting = [&](bool left_end) {
+    const std::deque<LightFront>& other = family > 0 ? lp.minus : lp.plus;
+    if (other.empty()) return false;
+    // C− fronts stand left to right, C+ ones right to left: the one nearest the end.
+    const bool front_first = (family > 0) == left_end;  // the other family's queue read from its front
+    return (front_first ? other.front() : other.back()).smooth;
+  };
+  const auto carry = [&](long near, long far, bool wave_right) {
+    if (!step_of(near) || !step_of(far) || jump(near) * jump(far) <= 0.0) return 0.0;
+    const long beyond = edge(far + (wave_right ? -leftwards : leftwards), wave_right ? -leftwards : leftwards);
+    const double strip = std::abs(at(far) - at(near));
+    const double beyond_width =
+        step_of(beyond) && jump(beyond) * jump(far) > 0.0 ? std::abs(at(beyond) - at(far)) : kInf;
+    const Line line = wave_right ? line_through(jump(near), jump(far), strip, kInf, beyond_width, kPlateauRatio)
+                                 : line_through(jump(far), jump(near), strip, beyond_width, kInf, kPlateauRatio);
+    if (std::isnan(line.slope) || line.slope * jump(near) <= 0.0) return 0.0;
+    const bool to_end = wave_right ? a == kNone : b == kNone;
+    const bool on = to_end && reflecting(wave_right) && x_right - x_left <= kPlateauRatio * strip;
+    // Relative to the plateau: the wave's strip next to it differs from it by the near step's jump.
+    const Ramp ramp = wave_right ? Ramp{line.at_a + jump(near), line.slope, at(near),
+                                        on                 ? 0
+                                        : jump(near) > 0.0 ? 1
+                                                           : -1}
+                                 : Ramp{line.at_b - jump(near), line.slope, at(near),
+                                        on                 ? 0
+                                        : jump(near) > 0.0 ? -1
+                                                           : 1};
+    return ramp.at(x);
+  };
+  j += carry(b, b2, true) + carry(a, a2, false);
+  return j != before;
 }
 
 }  // namespace rigidity::characteristics

@@ -886,6 +886,9 @@ class Tracker {
   /// invariant on the line through the steps' values (the edges of waves stay as they are).
   /// Lattice pieces are sampled as their staircases. Returns false where nothing changes.
   bool light_reconstruct(int piece, double x, double t, State& state) const;
+  /// light_reconstruct for one family: adds to its invariant `j` at lab position x the line of
+  /// the smooth wave there; false if none reaches x.
+  bool light_line(int piece, int family, double x, double t, double& j) const;
   // ---- the error budget (see docs/solvers.md, "What the tolerance means") --------------------
   double star_mismatch_ = 0.0;          ///< kStarMismatch × tolerance²
   double dissipation_precision_ = 0.0;  ///< kDissipationPrecision × tolerance
