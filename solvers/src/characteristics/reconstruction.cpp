@@ -87,10 +87,11 @@ Tracker::Wedge Tracker::wedge(int a, int b, int family, double t) const {
   if (nodes_[nodes_[a].prev].right.material != m || nodes_[b].right.material != m) return {kNaN, kNaN};
   const int a2 = strip_edge(nodes_[a].prev, family, &Node::prev);
   const int b2 = strip_edge(nodes_[b].next, family, &Node::next);
-  // A strip beside it bounded by a step of the other sign holds an extremum, no part of the line.
+  // A strip beside it bounded by a step of the other sign holds an extremum, no part of the
+  // line: the step next to it stands at the mean of its sides (weighted as this strip).
   const double ja = own_jump(a), jb = own_jump(b);
-  const double left = is_step(a2, family) && own_jump(a2) * ja > 0.0 ? Xa - nodes_[a2].X_at(t) : kInf;
-  const double right = is_step(b2, family) && own_jump(b2) * jb > 0.0 ? nodes_[b2].X_at(t) - Xb : kInf;
+  const double left = !is_step(a2, family) ? kInf : own_jump(a2) * ja > 0.0 ? Xa - nodes_[a2].X_at(t) : width;
+  const double right = !is_step(b2, family) ? kInf : own_jump(b2) * jb > 0.0 ? nodes_[b2].X_at(t) - Xb : width;
   const Line line = line_through(ja, jb, width, left, right, kPlateauRatio);
   if (std::isnan(line.slope)) return {kNaN, kNaN};
   const double at_a = line.at_a + nodes_[a].offset, at_b = line.at_b + nodes_[b].offset;
