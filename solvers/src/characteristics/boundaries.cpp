@@ -235,7 +235,10 @@ void Tracker::absorb_droplet(int piece, int side, int before, double X, double x
   const int end = side < 0 ? pieces_[piece].left_end : pieces_[piece].right_end;
   reanchor(end, t);
   nodes_[end].x0 = x + side * droplet_lab_length(end, X, kept, t);
-  ++droplets_;
+  if (droplets_++ == 0) {
+    first_droplet_ = t;
+    first_droplet_body_ = pieces_[piece].body;
+  }
 }
 
 double Tracker::droplet_lab_length(int end, double X, const State& state, double t) const {

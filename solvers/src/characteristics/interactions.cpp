@@ -999,6 +999,11 @@ int Tracker::crack_at_meeting(const Meeting& g, const RiemannSolution& sol, doub
     // A smooth wave's step decided this crack: a finer step would part the body elsewhere.
     if (qualitative_cracks_++ == 0) qualitative_body_ = pieces_[g.left_piece].body;
     qualitative_since_ = std::min(qualitative_since_, t);
+  } else if (droplets_ > 0) {
+    // The waves of a kept droplet (or its absence) reach this crack: with a finer tolerance the
+    // droplet would have broken off and come back, and the body parts elsewhere or not at all.
+    ++cracks_after_droplets_;
+    qualitative_since_ = std::min(qualitative_since_, t);
   }
   return right_holder;
 }

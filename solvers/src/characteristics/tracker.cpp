@@ -316,17 +316,25 @@ void Tracker::report_bound_numbers(const BoundParts& bound) {
 }
 
 void Tracker::report_qualitative() {
-  if (qualitative_cracks_ <= 0) return;
+  if (qualitative_cracks_ <= 0 && cracks_after_droplets_ <= 0) return;
   // In the scene's units, as every time a run reports.
+  const std::string unit(unit_symbol(Dimension::time, scene_.units));
   const double since = from_natural(qualitative_since_, Dimension::time, scene_.units);
   result_.solver_numbers.emplace_back("qualitative_from", since);
   result_.solver_numbers.emplace_back("cracks_by_smooth_waves", static_cast<double>(qualitative_cracks_));
-  result_.warnings.push_back("from t = " + number(since) + " " +
-                             std::string(unit_symbol(Dimension::time, scene_.units)) +
-                             " the result is qualitative: body '" + scene_.bodies[qualitative_body_].name +
-                             "' cracked where the steps of a smooth wave decided it (" +
-                             std::to_string(qualitative_cracks_) + (qualitative_cracks_ == 1 ? " crack" : " cracks") +
-                             "), so where and when it parts, and all that follows, changes with solver.tolerance; "
+  result_.solver_numbers.emplace_back("cracks_after_droplets", static_cast<double>(cracks_after_droplets_));
+  const auto cracks = [](long n) { return std::to_string(n) + (n == 1 ? " crack" : " cracks"); };
+  std::string why;
+  if (qualitative_cracks_ > 0)
+    why = "body '" + scene_.bodies[qualitative_body_].name + "' cracked where the steps of a smooth wave decided it (" +
+          cracks(qualitative_cracks_) + ")";
+  if (cracks_after_droplets_ > 0)
+    why += std::string(why.empty() ? "" : ", and ") + "bodies cracked after a droplet was kept in body '" +
+           scene_.bodies[first_droplet_body_].name +
+           "' at t = " + number(from_natural(first_droplet_, Dimension::time, scene_.units)) + " " + unit + " (" +
+           cracks(cracks_after_droplets_) + ": with a finer tolerance it would have broken off)";
+  result_.warnings.push_back("from t = " + number(since) + " " + unit + " the result is qualitative: " + why +
+                             ", so where and when bodies part, and all that follows, changes with solver.tolerance; "
                              "the error bound does not cover it");
 }
 

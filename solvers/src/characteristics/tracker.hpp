@@ -781,6 +781,12 @@ class Tracker {
   double qualitative_since_ = kInf;
   long qualitative_cracks_ = 0;
   int qualitative_body_ = kNone;  ///< the body of the first such crack
+  /// Cracks after a droplet was kept (absorb_droplet): the droplet would have broken off and
+  /// come back, so where and when bodies part from then on depends on the droplet limit, which
+  /// follows the tolerance; the first droplet's time and body.
+  long cracks_after_droplets_ = 0;
+  double first_droplet_ = kInf;
+  int first_droplet_body_ = kNone;
   std::vector<CentredFan> fans_;
   std::vector<int> free_fans_;
   /// A step leaves its centred fan (it interacts, or moves off its line).
