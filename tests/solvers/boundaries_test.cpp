@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "error_bound.hpp"
+#include "exact/bisection.hpp"
 #include "exact/riemann.hpp"
 #include "rigidity/errors.hpp"
 #include "rigidity/scene_loader.hpp"
@@ -267,22 +268,15 @@ outputs: {snapshots: [{times: [1.5], quantities: [v, s, x], samples: 2001}]}
     [[nodiscard]] double x(double t) const { return x0 + top * t * t / 4.0; }
   };
   const Ramp left{0.3, 0.0}, right{0.2, 1.0};
-  // The root in [lo, hi] of a function that falls through zero.
-  const auto root = [](auto f, double lo, double hi) {
-    for (int it = 0; it < 200; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      (f(mid) > 0.0 ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
-  };
   const auto j_minus = [&](double x, double t) {
     if (x + t <= 1.0) return 0.0;
-    const double sigma = root([&](double sg) { return x - (right.x(sg) - (t - sg)); }, 0.0, t);
+    const double sigma = exact::bisect([&](double sg) { return x - (right.x(sg) - (t - sg)); }, 0.0, t);
     return 2.0 * right.phi(sigma);
   };
   const auto j_plus = [&](double x, double t) {
     if (x >= t) return 0.0;
-    const double tau = root([&](double ta) { return left.x(ta) + (t - ta) - x; }, 0.0, t);
+    const double on = std::max(x, left.x(t));  // a sample on the piston's face, to round-off
+    const double tau = exact::bisect([&](double ta) { return left.x(ta) + (t - ta) - on; }, 0.0, t);
     return 2.0 * left.phi(tau) - j_minus(left.x(tau), tau);
   };
   std::map<double, double> v, s, x;
@@ -347,12 +341,9 @@ solver: {method: characteristics, tolerance: )"
     for (const auto& [X, lab] : x) {
       double exact = 0.0;
       if (lab < 1.5) {
-        double lo = 0.0, hi = 1.5;  // x_p(tau) + 1.5 - tau falls as tau grows
-        for (int it = 0; it < 200; ++it) {
-          const double mid = 0.5 * (lo + hi);
-          (position(mid) + 1.5 - mid > lab ? lo : hi) = mid;
-        }
-        exact = 2.0 * std::atanh(velocity(0.5 * (lo + hi)));
+        const double on = std::max(lab, position(1.5));  // a sample on the piston's face, to round-off
+        const double tau = exact::bisect([&](double ta) { return position(ta) + 1.5 - ta - on; }, 0.0, 1.5);
+        exact = 2.0 * std::atanh(velocity(tau));
       }
       error += std::abs(std::atanh(v[X]) - std::log(s[X]) - exact);  // J+ = phi + Psi, Psi = -ln s
     }

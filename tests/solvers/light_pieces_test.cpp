@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "error_bound.hpp"
+#include "exact/bisection.hpp"
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/solve.hpp"
 
@@ -328,17 +329,10 @@ outputs: {snapshots: [{times: [2.6], quantities: [v, s, x], samples: 2001}]}
   constexpr double kT = 2.6;
   const auto phi_p = [](double t) { return std::atanh(0.1 * t); };
   const auto x_p = [](double t) { return 0.05 * t * t; };
-  // The root in [lo, hi] of an increasing function.
-  const auto root = [](auto f, double lo, double hi) {
-    for (int it = 0; it < 200; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      (f(mid) < 0.0 ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
-  };
   // The time the C+ characteristic reaching (x, t) left the piston (x_p + t - tau falls with tau).
   const auto launched = [&](double x, double t) {
-    return root([&](double ta) { return x - x_p(ta) - (t - ta); }, 0.0, t);
+    const double on = std::max(x, x_p(t));  // a sample on the piston's face, to round-off
+    return exact::bisect([&](double ta) { return on - x_p(ta) - (t - ta); }, 0.0, t);
   };
   // The free end from t = 1 (where the ramp's first characteristic reaches it, at x = 1), by RK4.
   constexpr double kH = 1e-4;
@@ -357,7 +351,7 @@ outputs: {snapshots: [{times: [2.6], quantities: [v, s, x], samples: 2001}]}
   };
   const auto j_minus = [&](double x, double t) {
     if (x + t <= 1.0) return 0.0;
-    const double sigma = root([&](double sg) { return end_at(sg) - (t - sg) - x; }, 1.0, t);
+    const double sigma = exact::bisect([&](double sg) { return end_at(sg) - (t - sg) - x; }, 1.0, t);
     return 2.0 * phi_p(launched(end_at(sigma), sigma));
   };
   const auto j_plus = [&](double x, double t) {
