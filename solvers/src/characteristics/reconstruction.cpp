@@ -300,74 +300,93 @@ bool Tracker::light_reconstruct(int piece, double x, double t, State& state) con
   return true;
 }
 
-bool Tracker::light_line(int piece, int family, double x, double t, double& j) const {
-  const LightPiece& lp = light_[piece];
-  const std::deque<LightFront>& q = family > 0 ? lp.plus : lp.minus;
-  const auto at = [&](long i) { return q[static_cast<std::size_t>(i)].x_at(t, family); };
-  // Each front's value on its left and on its right: a C+ front runs into j_ahead on its right.
-  const auto left_of = [&](long i) { return family > 0 ? q[i].j_behind : q[i].j_ahead; };
-  const auto right_of = [&](long i) { return family > 0 ? q[i].j_ahead : q[i].j_behind; };
-  const auto jump = [&](long i) { return right_of(i) - left_of(i); };
-  // As on a node piece (strip_edge): a weak smooth step riding on the wave is a jump on top
-  // of its line, not one of the steps the line is drawn through.
-  const auto riding = [&](long i) { return q[i].smooth && std::abs(jump(i)) < kSuperposed * policy_.fan_step(); };
-  // C+ fronts stand right to left in their queue, C− fronts left to right.
-  const long n = static_cast<long>(q.size()), leftwards = family > 0 ? 1 : -1;
-  long k = 0;  // C+: fronts right of x; C−: fronts at or left of x
-  while (k < n && (family > 0 ? at(k) > x : at(k) <= x)) ++k;
-  const long left_start = family > 0 ? k : k - 1, right_start = family > 0 ? k - 1 : k;
-  // The nearest front from index i on, walking by `by`, that is not riding (kNone: none).
-  const auto edge = [&](long i, long by) {
+/// One family's queue of a light piece at time t, read around lab position x: its fronts'
+/// positions and jumps, and the walks light_line makes along it. C+ fronts stand right to left
+/// in their queue, C− fronts left to right.
+struct LightQueue {
+  const std::deque<LightFront>& q;
+  int family;
+  double t, x, superposed;  ///< superposed: a riding step is weaker than this
+  long n = static_cast<long>(q.size());
+  long leftwards = family > 0 ? 1 : -1;
+  long left_start = 0, right_start = 0;  ///< the first index left and right of x
+
+  LightQueue(const std::deque<LightFront>& queue, int fam, double time, double at_x, double weak)
+      : q(queue), family(fam), t(time), x(at_x), superposed(weak) {
+    long k = 0;  // C+: fronts right of x; C−: fronts at or left of x
+    while (k < n && (family > 0 ? at(k) > x : at(k) <= x)) ++k;
+    left_start = family > 0 ? k : k - 1;
+    right_start = family > 0 ? k - 1 : k;
+  }
+  [[nodiscard]] double at(long i) const { return q[static_cast<std::size_t>(i)].x_at(t, family); }
+  /// Its own invariant's jump, right less left: a C+ front runs into j_ahead on its right.
+  [[nodiscard]] double jump(long i) const {
+    const LightFront& f = q[static_cast<std::size_t>(i)];
+    return family > 0 ? f.j_ahead - f.j_behind : f.j_behind - f.j_ahead;
+  }
+  /// As on a node piece (strip_edge): a weak smooth step riding on the wave is a jump on top of
+  /// its line, not one of the steps the line is drawn through.
+  [[nodiscard]] bool riding(long i) const { return q[i].smooth && std::abs(jump(i)) < superposed; }
+  [[nodiscard]] bool step(long i) const { return i != kNone && q[i].smooth; }
+  /// The nearest front from index i on, walking by `by`, that is not riding (kNone: none).
+  [[nodiscard]] long edge(long i, long by) const {
     while (i >= 0 && i < n && riding(i)) i += by;
     return i >= 0 && i < n ? i : static_cast<long>(kNone);
-  };
-  // The line through the steps of one sign around x, the riding ones or the others as `weak`
-  // says, relative to the staircase of their jumps (see train_wedge; NaN: none reaches x).
-  const auto train = [&](int sign, bool weak) {
-    const auto step = [&](long i, long by) {  // from index i on, walking by `by`
-      for (int walked = 0; walked < kMaxTrainWalk && i >= 0 && i < n; ++walked, i += by) {
+  }
+  /// The line through the steps of one sign around x, the riding ones or the others as `weak`
+  /// says, relative to the staircase of their jumps (see Tracker::train_wedge; NaN: none
+  /// reaches x).
+  [[nodiscard]] double train(int sign, bool weak) const {
+    const auto nearest = [&](long i, long by) {
+      for (int walked = 0; walked < Tracker::kMaxTrainWalk && i >= 0 && i < n; ++walked, i += by) {
         if (!q[i].smooth) break;  // a true jump
         if (riding(i) == weak && sign * jump(i) > 0.0) return i;
       }
       return static_cast<long>(kNone);
     };
-    const long ta = step(left_start, leftwards);
-    const long tb = ta == kNone ? kNone : step(right_start, -leftwards);
+    const long ta = nearest(left_start, leftwards);
+    const long tb = ta == kNone ? kNone : nearest(right_start, -leftwards);
     if (tb == kNone) return std::numeric_limits<double>::quiet_NaN();
-    const long ta2 = step(ta + leftwards, leftwards), tb2 = step(tb - leftwards, -leftwards);
+    const long ta2 = nearest(ta + leftwards, leftwards), tb2 = nearest(tb - leftwards, -leftwards);
     const double Xa = at(ta), Xb = at(tb);
     const Line train_line = line_through(jump(ta), jump(tb), Xb - Xa, ta2 != kNone ? Xa - at(ta2) : kInf,
-                                         tb2 != kNone ? at(tb2) - Xb : kInf, kPlateauRatio);
+                                         tb2 != kNone ? at(tb2) - Xb : kInf, Tracker::kPlateauRatio);
     return train_line.at_a + train_line.slope * (x - Xa);
-  };
+  }
+};
+
+bool Tracker::light_line(int piece, int family, double x, double t, double& j) const {
+  const LightPiece& lp = light_[piece];
+  const LightQueue lq(family > 0 ? lp.plus : lp.minus, family, t, x, kSuperposed * policy_.fan_step());
   const double before = j;
   // A train of riding steps of one sign is a weak smooth wave of its own, on top of the
   // region's value.
   for (int sign : {-1, +1}) {
-    const double riding_line = train(sign, true);
+    const double riding_line = lq.train(sign, true);
     if (!std::isnan(riding_line)) j += riding_line;
   }
-  const long a = edge(left_start, leftwards), b = edge(right_start, -leftwards);
-  const long a2 = a == kNone ? kNone : edge(a + leftwards, leftwards);
-  const long b2 = b == kNone ? kNone : edge(b - leftwards, -leftwards);
-  const auto step_of = [&](long i) { return i != kNone && q[i].smooth; };
-  if (step_of(a) && step_of(b)) {
+  const long a = lq.edge(lq.left_start, lq.leftwards), b = lq.edge(lq.right_start, -lq.leftwards);
+  const long a2 = a == kNone ? kNone : lq.edge(a + lq.leftwards, lq.leftwards);
+  const long b2 = b == kNone ? kNone : lq.edge(b - lq.leftwards, -lq.leftwards);
+  if (lq.step(a) && lq.step(b)) {
     // Steps of both signs among these: waves of the family superposed, or an extremum (see
     // reconstruct): each is the line through the steps of its own sign.
-    const bool mixed = jump(a) * jump(b) < 0.0 || (step_of(a2) && jump(a) * jump(a2) < 0.0) ||
-                       (step_of(b2) && jump(a) * jump(b2) < 0.0);
+    const double ja = lq.jump(a);
+    const bool mixed =
+        ja * lq.jump(b) < 0.0 || (lq.step(a2) && ja * lq.jump(a2) < 0.0) || (lq.step(b2) && ja * lq.jump(b2) < 0.0);
     double wave_line = 0.0;
     bool drawn = false;
     if (mixed) {
       for (int sign : {-1, +1}) {
-        const double line = train(sign, false);
+        const double line = lq.train(sign, false);
         if (!std::isnan(line)) wave_line += line, drawn = true;
       }
     } else {
-      const double Xa = at(a), Xb = at(b);
-      const Line line = line_through(jump(a), jump(b), Xb - Xa, step_of(a2) ? Xa - at(a2) : kInf,
-                                     step_of(b2) ? at(b2) - Xb : kInf, kPlateauRatio);
-      // The region's own value carries the riding steps between a and x as the jumps they are.
+      const double Xa = lq.at(a), Xb = lq.at(b);
+      const Line line = line_through(ja, lq.jump(b), Xb - Xa, lq.step(a2) ? Xa - lq.at(a2) : kInf,
+                                     lq.step(b2) ? lq.at(b2) - Xb : kInf, kPlateauRatio);
+      // The region's own value carries the riding steps between a and x that make no train as
+      // the jumps they are.
       if (!std::isnan(line.slope)) wave_line = line.at_a + line.slope * (x - Xa), drawn = true;
     }
     if (drawn) {
@@ -375,45 +394,43 @@ bool Tracker::light_line(int piece, int family, double x, double t, double& j) c
       return true;
     }
   }
-  // No line reaches x: it lies on a plateau (between two waves, or between a wave and an end).
-  // A wave beside it carries on the line of its first strip into it until the line meets the
-  // plateau's value, or to the end where the wave is reflecting there (the fronts of the other
-  // family nearest that end are smooth) and the plateau is no wider than kPlateauRatio of that
-  // strip (as on a node piece, see reconstruct).
-  const Piece& pc = pieces_[piece];
-  const double x_left = a != kNone ? at(a) : nodes_[pc.left_end].x_at(t);
-  const double x_right = b != kNone ? at(b) : nodes_[pc.right_end].x_at(t);
-  const auto reflecting = [&](bool left_end) {
-    const std::deque<LightFront>& other = family > 0 ? lp.minus : lp.plus;
-    if (other.empty()) return false;
-    // C− fronts stand left to right, C+ ones right to left: the one nearest the end.
-    const bool front_first = (family > 0) == left_end;  // the other family's queue read from its front
-    return (front_first ? other.front() : other.back()).smooth;
-  };
-  const auto carry = [&](long near, long far, bool wave_right) {
-    if (!step_of(near) || !step_of(far) || jump(near) * jump(far) <= 0.0) return 0.0;
-    const long beyond = edge(far + (wave_right ? -leftwards : leftwards), wave_right ? -leftwards : leftwards);
-    const double strip = std::abs(at(far) - at(near));
-    const double beyond_width =
-        step_of(beyond) && jump(beyond) * jump(far) > 0.0 ? std::abs(at(beyond) - at(far)) : kInf;
-    const Line line = wave_right ? line_through(jump(near), jump(far), strip, kInf, beyond_width, kPlateauRatio)
-                                 : line_through(jump(far), jump(near), strip, beyond_width, kInf, kPlateauRatio);
-    if (std::isnan(line.slope) || line.slope * jump(near) <= 0.0) return 0.0;
-    const bool to_end = wave_right ? a == kNone : b == kNone;
-    const bool on = to_end && reflecting(wave_right) && x_right - x_left <= kPlateauRatio * strip;
-    // Relative to the plateau: the wave's strip next to it differs from it by the near step's jump.
-    const Ramp ramp = wave_right ? Ramp{line.at_a + jump(near), line.slope, at(near),
-                                        on                 ? 0
-                                        : jump(near) > 0.0 ? 1
-                                                           : -1}
-                                 : Ramp{line.at_b - jump(near), line.slope, at(near),
-                                        on                 ? 0
-                                        : jump(near) > 0.0 ? -1
-                                                           : 1};
-    return ramp.at(x);
-  };
-  j += carry(b, b2, true) + carry(a, a2, false);
+  j += light_carried(piece, lq, a, b, b2, true) + light_carried(piece, lq, a, b, a2, false);
   return j != before;
+}
+
+double Tracker::light_carried(int piece, const LightQueue& lq, long a, long b, long far, bool wave_right) const {
+  // No line reaches x: it lies on a plateau between a (or the left end) and b (or the right
+  // end). The wave beside it (right of it from b, or left of it from a) carries on the line of
+  // its first strip into it until the line meets the plateau's value, or to the end where the
+  // wave is reflecting there (the fronts of the other family nearest that end are smooth) and
+  // the plateau is no wider than kPlateauRatio of that strip (as on a node piece, see
+  // reconstruct).
+  const long near = wave_right ? b : a;
+  if (!lq.step(near) || !lq.step(far) || lq.jump(near) * lq.jump(far) <= 0.0) return 0.0;
+  const long outwards = wave_right ? -lq.leftwards : lq.leftwards;
+  const long beyond = lq.edge(far + outwards, outwards);
+  const double strip = std::abs(lq.at(far) - lq.at(near));
+  const double beyond_width =
+      lq.step(beyond) && lq.jump(beyond) * lq.jump(far) > 0.0 ? std::abs(lq.at(beyond) - lq.at(far)) : kInf;
+  const Line line = wave_right ? line_through(lq.jump(near), lq.jump(far), strip, kInf, beyond_width, kPlateauRatio)
+                               : line_through(lq.jump(far), lq.jump(near), strip, beyond_width, kInf, kPlateauRatio);
+  if (std::isnan(line.slope) || line.slope * lq.jump(near) <= 0.0) return 0.0;
+  const Piece& pc = pieces_[piece];
+  const double x_left = a != kNone ? lq.at(a) : nodes_[pc.left_end].x_at(lq.t);
+  const double x_right = b != kNone ? lq.at(b) : nodes_[pc.right_end].x_at(lq.t);
+  bool on = false;
+  if ((wave_right ? a : b) == kNone && x_right - x_left <= kPlateauRatio * strip) {
+    // The other family's front nearest that end (C− fronts stand left to right, C+ ones right
+    // to left) is smooth: the wave is reflecting there.
+    const LightPiece& lp = light_[piece];
+    const std::deque<LightFront>& other = lq.family > 0 ? lp.minus : lp.plus;
+    on = !other.empty() && ((lq.family > 0) == wave_right ? other.front() : other.back()).smooth;
+  }
+  // Relative to the plateau: the wave's strip next to it differs from it by the near step's jump.
+  const int clip = on ? 0 : (lq.jump(near) > 0.0) == wave_right ? 1 : -1;
+  const Ramp ramp = wave_right ? Ramp{line.at_a + lq.jump(near), line.slope, lq.at(near), clip}
+                               : Ramp{line.at_b - lq.jump(near), line.slope, lq.at(near), clip};
+  return ramp.at(lq.x);
 }
 
 }  // namespace rigidity::characteristics

@@ -335,6 +335,8 @@ struct WaveStates {
   bool capped = false;  ///< that count was cut to kMaxFanSteps
 };
 
+struct LightQueue;
+
 class Tracker {
  public:
   Tracker(const Scene& scene, RunRecorder& recorder) : scene_(scene), recorder_(recorder), policy_(scene) {
@@ -349,6 +351,7 @@ class Tracker {
   void validate(double t) const;
 
  private:
+  friend struct LightQueue;  // reads kMaxTrainWalk and kPlateauRatio
   // ---- set-up -------------------------------------------------------------------
   void build_bodies();
   void build_walls();
@@ -895,6 +898,9 @@ class Tracker {
   /// light_reconstruct for one family: adds to its invariant `j` at lab position x the line of
   /// the smooth wave there; false if none reaches x.
   bool light_line(int piece, int family, double x, double t, double& j) const;
+  /// light_line where no line reaches x: what the wave beside the plateau that holds x carries
+  /// into it (see the definition).
+  double light_carried(int piece, const LightQueue& lq, long a, long b, long far, bool wave_right) const;
   // ---- the error budget (see docs/solvers.md, "What the tolerance means") --------------------
   double star_mismatch_ = 0.0;          ///< kStarMismatch × tolerance²
   double dissipation_precision_ = 0.0;  ///< kDissipationPrecision × tolerance
