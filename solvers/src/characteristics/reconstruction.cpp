@@ -8,7 +8,6 @@
 #include "tracker.hpp"
 
 namespace rigidity::characteristics {
-namespace {
 
 /// A linear correction of one family's invariant, c(X) = c0 + q (X − X0), kept where its
 /// sign is `sign` and zero elsewhere (sign 0: kept everywhere).
@@ -38,6 +37,8 @@ struct Ramp {
     return c0 * (b - a) + 0.5 * q * ((b - X0) * (b - X0) - (a - X0) * (a - X0));
   }
 };
+
+namespace {
 
 /// The line of one family's invariant over a strip of `width` between two smooth steps of
 /// jumps ja and jb, with the wave's strips beside it `left` and `right` wide (kInf: none): its
@@ -149,72 +150,13 @@ bool Tracker::reconstruct(int n, double X, double t, State& state, double& dx) c
   double j[2] = {region.state.rapidity - psi, region.state.rapidity + psi};  // [0] J−, [1] J+
   bool changed = false;
   dx = 0.0;
-  // An end or interface from which the steps of a smooth wave of `family` leave: the wave
-  // that makes them by reflection (or transmission) reaches it, and its line goes on to it.
-  const auto reflecting = [&](int edge, int family) {
-    const Node& e = nodes_[edge];
-    if (e.kind == NodeKind::front) return false;
-    const int step = e.kind == NodeKind::right_end ? strip_edge(e.prev, family, &Node::prev)
-                                                   : strip_edge(e.next, family, &Node::next);
-    return step != kNone && is_step(step, family);
-  };
   for (int family : {-1, +1}) {
     const int l = node.kind == NodeKind::front ? strip_edge(n, family, &Node::prev) : n;
     const int r = strip_edge(node.next, family, &Node::next);
     const double Xl = nodes_[l].X_at(t), Xr = nodes_[r].X_at(t);
     if (!(Xr > Xl)) continue;
-    Ramp ramps[5];
-    int count = 0;
-    bool interleaved = false;
-    if (is_step(l, family) && is_step(r, family)) {
-      // Steps of both signs among the two around X and their neighbours: two smooth waves of
-      // the family superposed, their steps interleaved (in a linearly degenerate body they run
-      // side by side for ever), or an extremum where one wave ends and the next begins. Each
-      // wave is the line through the steps of its own sign; at an extremum neither line reaches
-      // X and the plateau stands, each wave's line carried on to it (below).
-      const int l2 = strip_edge(nodes_[l].prev, family, &Node::prev);
-      const int r2 = strip_edge(nodes_[r].next, family, &Node::next);
-      const double sign_l = own_jump(l);
-      const bool mixed = sign_l * own_jump(r) < 0.0 || (is_step(l2, family) && sign_l * own_jump(l2) < 0.0) ||
-                         (is_step(r2, family) && sign_l * own_jump(r2) < 0.0);
-      if (!mixed) {
-        const Wedge w = wedge(l, r, family, t);
-        if (!std::isnan(w.slope)) ramps[count++] = Ramp{w.at_a, w.slope, Xl, 0};
-      } else {
-        for (int sign : {-1, +1}) {
-          const Wedge train = train_wedge(n, X, family, sign, false, t);
-          if (!std::isnan(train.slope))
-            ramps[count++] = Ramp{train.at_a, train.slope, train.from, 0, train.from, train.to};
-        }
-        interleaved = count > 0;
-      }
-    }
-    // (A step still on the line of its centred fan has the exact fan beyond it, see fan_sample.)
-    if (count == 0 && is_step(r, family) && nodes_[r].fan == kNone) {  // a wave right of the plateau
-      const int r2 = strip_edge(nodes_[r].next, family, &Node::next);
-      const Wedge w = is_step(r2, family) ? wedge(r, r2, family, t) : Wedge{};
-      const double jump = own_jump(r);
-      const bool on = reflecting(l, -family) && Xr - Xl <= kPlateauRatio * (nodes_[r2].X_at(t) - Xr);
-      if (w.slope * jump > 0.0) ramps[count++] = Ramp{w.at_a + jump, w.slope, Xr, on ? 0 : jump > 0.0 ? 1 : -1};
-    }
-    const bool in_wedge = count == 1 && ramps[0].sign == 0;
-    if (!in_wedge && !interleaved && is_step(l, family) && nodes_[l].fan == kNone) {  // a wave left of the plateau
-      const int l2 = strip_edge(nodes_[l].prev, family, &Node::prev);
-      const Wedge w = is_step(l2, family) ? wedge(l2, l, family, t) : Wedge{};
-      const double jump = own_jump(l);
-      const double X2 = nodes_[l2].X_at(t);
-      const bool on = reflecting(r, -family) && Xr - Xl <= kPlateauRatio * (Xl - X2);
-      if (w.slope * jump > 0.0)
-        ramps[count++] = Ramp{w.at_a + w.slope * (Xl - X2) - jump, w.slope, Xl, on ? 0 : jump > 0.0 ? -1 : 1};
-    }
-    // A train of weak steps riding on the wave (superposed: each a jump on top of its line) is
-    // a weak smooth wave of its own: drawn as the line through its steps' values between the two
-    // of them around X, not as their staircase.
-    for (int sign : {-1, +1}) {
-      const Wedge riding = train_wedge(n, X, family, sign, true, t);
-      if (!std::isnan(riding.slope))
-        ramps[count++] = Ramp{riding.at_a, riding.slope, riding.from, 0, riding.from, riding.to};
-    }
+    Ramp ramps[kMaxRamps];
+    const int count = wave_ramps(n, X, family, t, l, r, ramps);
     if (count == 0) continue;
     double to_X = 0.0, to_r = 0.0;
     bool past = false, one_material = true;  // past: the walk is right of the region that holds X
@@ -249,6 +191,71 @@ bool Tracker::reconstruct(int n, double X, double t, State& state, double& dx) c
   if (!s.ok() || !representable(s.value)) return false;
   state = State{0.5 * (j[1] + j[0]), s.value};
   return true;
+}
+
+int Tracker::wave_ramps(int n, double X, int family, double t, int l, int r, Ramp* ramps) const {
+  const double Xl = nodes_[l].X_at(t), Xr = nodes_[r].X_at(t);
+  // An end or interface from which the steps of a smooth wave of `family` leave: the wave
+  // that makes them by reflection (or transmission) reaches it, and its line goes on to it.
+  const auto reflecting = [&](int edge, int fam) {
+    const Node& e = nodes_[edge];
+    if (e.kind == NodeKind::front) return false;
+    const int step =
+        e.kind == NodeKind::right_end ? strip_edge(e.prev, fam, &Node::prev) : strip_edge(e.next, fam, &Node::next);
+    return step != kNone && is_step(step, fam);
+  };
+  int count = 0;
+  bool interleaved = false;
+  if (is_step(l, family) && is_step(r, family)) {
+    // Steps of both signs among the two around X and their neighbours: two smooth waves of
+    // the family superposed, their steps interleaved (in a linearly degenerate body they run
+    // side by side for ever), or an extremum where one wave ends and the next begins. Each
+    // wave is the line through the steps of its own sign; at an extremum neither line reaches
+    // X and the plateau stands, each wave's line carried on to it (below).
+    const int l2 = strip_edge(nodes_[l].prev, family, &Node::prev);
+    const int r2 = strip_edge(nodes_[r].next, family, &Node::next);
+    const double sign_l = own_jump(l);
+    const bool mixed = sign_l * own_jump(r) < 0.0 || (is_step(l2, family) && sign_l * own_jump(l2) < 0.0) ||
+                       (is_step(r2, family) && sign_l * own_jump(r2) < 0.0);
+    if (!mixed) {
+      const Wedge w = wedge(l, r, family, t);
+      if (!std::isnan(w.slope)) ramps[count++] = Ramp{w.at_a, w.slope, Xl, 0};
+    } else {
+      for (int sign : {-1, +1}) {
+        const Wedge train = train_wedge(n, X, family, sign, false, t);
+        if (!std::isnan(train.slope))
+          ramps[count++] = Ramp{train.at_a, train.slope, train.from, 0, train.from, train.to};
+      }
+      interleaved = count > 0;
+    }
+  }
+  // (A step still on the line of its centred fan has the exact fan beyond it, see fan_sample.)
+  if (count == 0 && is_step(r, family) && nodes_[r].fan == kNone) {  // a wave right of the plateau
+    const int r2 = strip_edge(nodes_[r].next, family, &Node::next);
+    const Wedge w = is_step(r2, family) ? wedge(r, r2, family, t) : Wedge{};
+    const double jump = own_jump(r);
+    const bool on = reflecting(l, -family) && Xr - Xl <= kPlateauRatio * (nodes_[r2].X_at(t) - Xr);
+    if (w.slope * jump > 0.0) ramps[count++] = Ramp{w.at_a + jump, w.slope, Xr, on ? 0 : jump > 0.0 ? 1 : -1};
+  }
+  const bool in_wedge = count == 1 && ramps[0].sign == 0;
+  if (!in_wedge && !interleaved && is_step(l, family) && nodes_[l].fan == kNone) {  // a wave left of the plateau
+    const int l2 = strip_edge(nodes_[l].prev, family, &Node::prev);
+    const Wedge w = is_step(l2, family) ? wedge(l2, l, family, t) : Wedge{};
+    const double jump = own_jump(l);
+    const double X2 = nodes_[l2].X_at(t);
+    const bool on = reflecting(r, -family) && Xr - Xl <= kPlateauRatio * (Xl - X2);
+    if (w.slope * jump > 0.0)
+      ramps[count++] = Ramp{w.at_a + w.slope * (Xl - X2) - jump, w.slope, Xl, on ? 0 : jump > 0.0 ? -1 : 1};
+  }
+  // A train of weak steps riding on the wave (superposed: each a jump on top of its line) is
+  // a weak smooth wave of its own: drawn as the line through its steps' values between the two
+  // of them around X, not as their staircase.
+  for (int sign : {-1, +1}) {
+    const Wedge riding = train_wedge(n, X, family, sign, true, t);
+    if (!std::isnan(riding.slope))
+      ramps[count++] = Ramp{riding.at_a, riding.slope, riding.from, 0, riding.from, riding.to};
+  }
+  return count;
 }
 
 double Tracker::reconstruction_error(int id, double t) const {

@@ -336,6 +336,7 @@ struct WaveStates {
 };
 
 struct LightQueue;
+struct Ramp;
 
 class Tracker {
  public:
@@ -890,6 +891,10 @@ class Tracker {
   /// reconstructed, and the lab position's change dx (see reconstruction.cpp). Returns false
   /// where nothing is reconstructed.
   bool reconstruct(int n, double X, double t, State& state, double& dx) const;
+  /// reconstruct for one family: the lines (ramps, at most kMaxRamps) of its smooth waves over
+  /// the strip between l and r, its nearest fronts around label X; how many.
+  int wave_ramps(int n, double X, int family, double t, int l, int r, Ramp* ramps) const;
+  static constexpr int kMaxRamps = 5;
   /// The same in a light piece (whose fronts run on lab lines), at lab position x where the
   /// staircase's state is `state`: between two smooth steps of one wave, each family's
   /// invariant on the line through the steps' values (the edges of waves stay as they are).
