@@ -12,6 +12,7 @@
 #include <string_view>
 #include <system_error>
 
+#include "outcome.hpp"
 #include "rigidity/errors.hpp"
 #include "rigidity/hyperbolic.hpp"
 #include "rigidity/number_text.hpp"
@@ -20,8 +21,13 @@ namespace rigidity {
 
 namespace {
 
+using solving::find_root;
+using solving::numerical_failure;
+using solving::Outcome;
+using solving::succeeded;
+
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using solving::kNaN;
 /// |ln s| beyond which no stretch is a state double arithmetic evaluates (s < 1e-304 or
 /// s > 1e304): the furthest a bracket search goes toward a range that has no end.
 constexpr double kLogStretchHorizon = 700.0;
@@ -36,23 +42,8 @@ constexpr int kSecantSteps = 8;
 constexpr std::string_view kPressureInverse = "the material's inverse stretch_at_pressure failed";
 constexpr std::string_view kPsiInverse = "the material's inverse stretch_at_psi failed";
 constexpr std::string_view kJumpConditions = "the shock jump conditions could not be solved";
-constexpr std::string_view kBrent = "Brent's method did not converge";
+constexpr std::string_view kCompositeWave = "a composite wave (a law with an inflection) could not be built";
 constexpr std::string_view kBeyondDoubles = "the star state lies beyond the range of double precision";
-
-/// A value, or why it could not be computed.
-template <class T>
-struct Outcome {
-  T value{};
-  Status status = Status::ok;
-  std::string_view what;               ///< with a failed status: the computation that failed
-  const Material* material = nullptr;  ///< and the material it concerned
-  [[nodiscard]] bool ok() const { return status == Status::ok; }
-  /// The same failure, for a result of another type.
-  template <class U>
-  [[nodiscard]] Outcome<U> as() const {
-    return Outcome<U>{U{}, status, what, material};
-  }
-};
 
 /// Which end of a material's range: compression (s smallest, p → max_pressure, Ψ → Ψ_max) or
 /// tension (s largest, p → max_tension, Ψ → Ψ_min).
@@ -65,77 +56,12 @@ bool beyond_psi(const Material& m, double psi, End end) {
   return psi < m.psi_min() || (psi == m.psi_min() && !std::isfinite(range.log_max));
 }
 
-/// A computed value.
-template <class T>
-Outcome<T> succeeded(T value) {
-  return Outcome<T>{value, Status::ok, {}, nullptr};
-}
-
-/// A function of the material failed. out_of_range is the solver's own verdict on a physical
-/// limit, reached through the limits the material declares; a function failing inside them is
-/// a numerical failure, whatever status it gave.
-template <class T>
-Outcome<T> numerical_failure(Status status, std::string_view what, const Material& m) {
-  return Outcome<T>{T{}, status == Status::out_of_range ? Status::not_converged : status, what, &m};
-}
-
 /// p within round-off of a limit of the material's pressure.
 bool at_pressure_limit(const Material& m, double p) {
   const auto near = [p](double limit) {
     return std::isfinite(limit) && std::abs(p - limit) <= kLimitRoundOff * std::abs(limit);
   };
   return p >= m.max_pressure() || p <= m.max_tension() || near(m.max_pressure()) || near(m.max_tension());
-}
-
-/// A function for Brent's method whose evaluation can fail (f returns Outcome<double>). The
-/// first failure is kept, and that evaluation, like every later one, gives NaN, on which GSL
-/// stops (GSL_EBADFUNC); the caller then reports failure(), never an iterate.
-template <class F>
-class Recording {
- public:
-  explicit Recording(const F& f) : f_(&f) {}
-  double operator()(double z) const {
-    if (!failure_.ok()) return kNaN;
-    const Outcome<double> r = (*f_)(z);
-    if (!r.ok()) {
-      failure_ = r;
-      return kNaN;
-    }
-    return r.value;
-  }
-  [[nodiscard]] const Outcome<double>& failure() const { return failure_; }
-
- private:
-  const F* f_;
-  mutable Outcome<double> failure_;
-};
-
-/// Brent's method (GSL) on a bracket where f changes sign; converged to round-off in z, or to
-/// `absolute` if that is larger. A failed evaluation of f ends it with that failure.
-template <class F>
-Outcome<double> find_root(const F& f, double lo, double hi, const Material& m, double absolute = 1.0e-300) {
-  gsl_set_error_handler_off();
-  const Recording<F> recording(f);
-  gsl_function fn{[](double z, void* params) { return (*static_cast<const Recording<F>*>(params))(z); },
-                  const_cast<Recording<F>*>(&recording)};
-  gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-  if (solver == nullptr) return numerical_failure<double>(Status::not_converged, kBrent, m);
-  Outcome<double> result = numerical_failure<double>(Status::not_converged, kBrent, m);
-  if (gsl_root_fsolver_set(solver, &fn, lo, hi) == GSL_SUCCESS) {
-    for (int iter = 0; iter < 300; ++iter) {
-      if (gsl_root_fsolver_iterate(solver) != GSL_SUCCESS) break;
-      const double a = gsl_root_fsolver_x_lower(solver), b = gsl_root_fsolver_x_upper(solver);
-      const double root = gsl_root_fsolver_root(solver);
-      if (gsl_root_test_interval(a, b, absolute, 2.0 * std::numeric_limits<double>::epsilon()) == GSL_SUCCESS ||
-          recording(root) == 0.0) {
-        result = succeeded<double>(root);
-        break;
-      }
-    }
-  }
-  gsl_root_fsolver_free(solver);
-  if (!recording.failure().ok()) return recording.failure();
-  return result;
 }
 
 /// Where a search for a sign change ended.
@@ -301,6 +227,11 @@ Outcome<double> shock_star_rapidity(const Material& m, const State& outer, Stret
 Outcome<double> star_rapidity(const WaveCurve& curve, Stretch star) {
   const Material& m = curve.material();
   const int family = curve.side() == Side::left ? -1 : +1;
+  if (crosses_inflection(m, curve.state().stretch, star)) {
+    const Solved<CompositeWave> wave = composite_wave(m, curve.state(), star, family);
+    if (!wave.ok()) return numerical_failure<double>(wave.status, kCompositeWave, m);
+    return succeeded<double>(wave.value.pieces.back().end.rapidity);
+  }
   if (wave_is_shock(m, curve.state(), star, family)) return shock_star_rapidity(m, curve.state(), star, family);
   const double psi = m.riemann_psi(star);
   return succeeded<double>(curve.side() == Side::left ? curve.invariant() - psi : curve.invariant() + psi);
@@ -880,6 +811,11 @@ Solved<State> centred_fan_state(const Material& m, int family, double j_other, d
   const Outcome<State> st = state_at(psi.value);
   if (!st.ok()) return Solved<State>::failure(st.status);
   return Solved<State>{st.value, Status::ok};
+}
+
+Solved<double> shock_rapidity(const Material& m, const State& outer, Stretch star, int family) {
+  const Outcome<double> r = shock_star_rapidity(m, outer, star, family);
+  return r.ok() ? Solved<double>{r.value, Status::ok} : Solved<double>::failure(r.status);
 }
 
 Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch star, int family) {

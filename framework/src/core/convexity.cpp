@@ -48,9 +48,10 @@ std::string Inflection::describe() const {
          ")";
 }
 
-std::optional<Inflection> find_inflection(const Material& material, StretchRange window) {
+std::vector<Inflection> find_inflections(const Material& material, StretchRange window) {
+  std::vector<Inflection> found;
   if (!std::isfinite(window.log_min) || !std::isfinite(window.log_max) || !(window.log_max > window.log_min))
-    return std::nullopt;
+    return found;
   std::vector<double> logs, g;
   double fastest = 0.0;
   const double width = window.log_max - window.log_min;
@@ -63,31 +64,50 @@ std::optional<Inflection> find_inflection(const Material& material, StretchRange
   }
   const double zero = kZero * fastest;
   const auto sign = [&](double value) { return value > zero ? 1 : value < -zero ? -1 : 0; };
-  // The changes of sign, each between the last sample of one sign and the next of the other;
-  // the one nearest to s = 1.
-  std::size_t last = logs.size(), best_a = 0, best_b = 0;
-  bool found = false;
+  // Each change of sign lies between the last sample of one sign and the next of the other.
+  std::size_t last = logs.size();
   for (std::size_t k = 0; k < logs.size(); ++k) {
     const int here = sign(g[k]);
     if (here == 0) continue;
     if (last < logs.size() && sign(g[last]) != here) {
-      const double distance = std::min(std::abs(logs[last]), std::abs(logs[k]));
-      if (!found || distance < std::min(std::abs(logs[best_a]), std::abs(logs[best_b]))) {
-        best_a = last;
-        best_b = k;
-        found = true;
+      double a = logs[last], b = logs[k];
+      const bool negative_at_a = g[last] < 0.0;
+      for (int step = 0; step < kBisections; ++step) {
+        const double middle = 0.5 * (a + b);
+        ((genuine_nonlinearity(material, middle, window) < 0.0) == negative_at_a ? a : b) = middle;
       }
+      found.push_back(Inflection{std::exp(0.5 * (a + b)), std::exp(logs[last]), g[last], std::exp(logs[k]), g[k]});
     }
     last = k;
   }
-  if (!found) return std::nullopt;
-  double a = logs[best_a], b = logs[best_b];
-  const bool negative_at_a = g[best_a] < 0.0;
-  for (int step = 0; step < kBisections; ++step) {
-    const double middle = 0.5 * (a + b);
-    ((genuine_nonlinearity(material, middle, window) < 0.0) == negative_at_a ? a : b) = middle;
-  }
-  return Inflection{std::exp(0.5 * (a + b)), std::exp(logs[best_a]), g[best_a], std::exp(logs[best_b]), g[best_b]};
+  return found;
+}
+
+std::optional<Inflection> find_inflection(const Material& material, StretchRange window) {
+  const std::vector<Inflection> all = find_inflections(material, window);
+  if (all.empty()) return std::nullopt;
+  const auto distance = [](const Inflection& i) {
+    return std::min(std::abs(std::log(i.s_before)), std::abs(std::log(i.s_after)));
+  };
+  return *std::min_element(all.begin(), all.end(),
+                           [&](const Inflection& a, const Inflection& b) { return distance(a) < distance(b); });
+}
+
+StretchRange inflection_window(const Material& material) {
+  constexpr double kScan = 100.0;
+  StretchRange window = material.admissible();
+  window.log_min = std::max(window.log_min, -std::log(kScan));
+  window.log_max = std::min(window.log_max, std::log(kScan));
+  return window;
+}
+
+const std::vector<double>& Material::inflection_logs() const {
+  std::call_once(inflections_found_, [this] {
+    if (linearly_degenerate()) return;
+    for (const Inflection& i : find_inflections(*this, inflection_window(*this)))
+      inflection_logs_.push_back(std::log(i.stretch));
+  });
+  return inflection_logs_;
 }
 
 }  // namespace rigidity

@@ -24,7 +24,6 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "rigidity/convexity.hpp"
 #include "rigidity/default_scene.hpp"
 #include "rigidity/number_text.hpp"
 #include "rigidity/plugins.hpp"
@@ -150,37 +149,10 @@ class SceneBuilder {
       } catch (const std::invalid_argument& e) {
         checker_.fail(entry, "material '" + entry.name + "' (" + model + "): " + e.what());
       }
-      if (scene.solver.method == SolverMethod::characteristics) require_convex(entry, *material);
       scene.materials.emplace(entry.name, MaterialDecl{entry.name, model, std::move(material), where(entry), text});
       material_names_.insert(entry.name);
     }
   }
-
-  /// The front tracker's Riemann solver takes every wave of a family to be a shock where it
-  /// compresses and a fan where it expands (or the reverse): a law whose genuine nonlinearity
-  /// changes sign on its range (scanned on it, or on [kConvexityScan⁻¹, kConvexityScan] where it
-  /// is unbounded) is refused for it, at the key that gives the law, and the message says what
-  /// runs it instead.
-  void require_convex(const Checked& entry, const Material& material) const {
-    if (material.linearly_degenerate()) return;
-    StretchRange window = material.admissible();
-    window.log_min = std::max(window.log_min, -std::log(kConvexityScan));
-    window.log_max = std::min(window.log_max, std::log(kConvexityScan));
-    const std::optional<Inflection> inflection = find_inflection(material, window);
-    if (!inflection) return;
-    const Checked* at = &entry["model"];
-    for (const char* key : {"pressure", "strain_energy", "table"})
-      if (const Checked* law = entry.find(key); law != nullptr && law->given) {
-        at = law;
-        break;
-      }
-    checker_.fail(*at,
-                  "material '" + entry.name + "' (" + entry["model"].word + "): " + inflection->describe() +
-                      "; the front tracker needs one sign of g on the material's range: narrow it to one side of "
-                      "that stretch, or run the finite-volume solver (solver.method: finite_volume), which takes the "
-                      "composite waves of such a law (at first order there)");
-  }
-  static constexpr double kConvexityScan = 100.0;
 
   /// The value of a formula's parameter, `k: 2.0` or `k: {value: 2.0e9, unit: pressure, min: 0}`, as
   /// written (the expression is evaluated in the scene's units); a declared one is first compared

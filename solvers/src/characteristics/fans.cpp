@@ -12,6 +12,11 @@
 
 namespace rigidity::characteristics {
 
+/// How far (relative to the fan's width in speed) a front along a fan's edge may run inside it
+/// and still be taken for the edge: a shock attached at a sonic point runs at the edge's speed
+/// to the round-off of the construction that found that point.
+constexpr double kAttachedEdge = 1e-9;
+
 const std::vector<QuadraturePoint>& fan_quadrature() {
   // The exact fan is analytic across its wedge: 48 Gauss–Legendre points integrate its
   // energy and momentum to round-off.
@@ -40,6 +45,7 @@ void Tracker::split_fan(int id, double t) {
   w.unsplit = 0;
   if (f.capped) fan_capped_ = true;
   std::vector<int>& out = emitted_split_;
+  out.clear();
   emit_fronts(m, w, family, piece, f.t0, f.X0, f.x0, out);
   // States listed from the outer one; in space a C+ fan's outer state is on its right.
   const std::size_t count = out.size();
@@ -93,11 +99,13 @@ bool Tracker::fan_sample(int n, double X, double t, State& state, double& x) con
     const double slowest = std::min(f.speed_a, f.speed_b), fastest = std::max(f.speed_a, f.speed_b);
     if (!(speed > slowest && speed < fastest)) continue;
     // The region's other edge is a step of the same fan, or lies beyond the fan: a wave that
-    // has entered the fan's wedge without meeting a step yet has changed the state behind it.
+    // has entered the fan's wedge without meeting a step yet has changed the state behind it. A
+    // shock attached to the fan (a composite wave) runs along its edge, at its speed to round-off.
     const int other = id == n ? nodes_[n].next : n;
     if (other == kNone || nodes_[other].fan != nodes_[id].fan) {
       const double edge = other == kNone ? (id == n ? kInf : -kInf) : (nodes_[other].X_at(t) - f.X0) / (t - f.t0);
-      if (id == n ? edge < fastest : edge > slowest) return false;
+      const double round_off = kAttachedEdge * (fastest - slowest);
+      if (id == n ? edge < fastest - round_off : edge > slowest + round_off) return false;
     }
     const Solved<State> exact = centred_fan_state(*f.material, f.family, f.j_other, f.psi_a, f.psi_b, speed);
     if (!exact.ok()) return false;  // the steps' state, then

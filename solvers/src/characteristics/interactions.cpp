@@ -472,7 +472,39 @@ void Tracker::resolve(int seed_left, int seed_right, double t) {
   resolve_group(group_, t);
 }
 
+void Tracker::emit_wave(const Material& m, const State& outer, const State& star, int family, bool fresh, int piece,
+                        double t, double X, double x, WaveStates& w, std::vector<int>& out) {
+  if (m.linearly_degenerate() || !crosses_inflection(m, outer.stretch, star.stretch)) {
+    wave(m, outer, star, family, fresh, w);
+    emit_fronts(m, w, family, piece, t, X, x, out);
+    return;
+  }
+  const Solved<CompositeWave> composite = composite_wave(m, outer, star.stretch, family);
+  if (!composite.ok())
+    throw NumericalError("the composite wave of a law with an inflection could not be built at t = " + number(t));
+  w.states.assign(1, outer);
+  w.shock = false;
+  w.unsplit = 0;
+  w.capped = false;
+  State from = outer;
+  const std::vector<WavePiece>& pieces = composite.value.pieces;
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    // The last piece ends at the star as the Riemann problem found it (the same state to round-off).
+    const State& to = k + 1 == pieces.size() ? star : pieces[k].end;
+    wave_piece(m, from, to, family, fresh, pieces[k].shock, wave_piece_);
+    emit_fronts(m, wave_piece_, family, piece, t, X, x, out);
+    w.states.insert(w.states.end(), wave_piece_.states.begin() + 1, wave_piece_.states.end());
+    from = to;
+  }
+}
+
 void Tracker::wave(const Material& m, const State& outer, const State& star, int family, bool fresh, WaveStates& w) {
+  wave_piece(m, outer, star, family, fresh, !m.linearly_degenerate() && wave_is_shock(m, outer, star.stretch, family),
+             w);
+}
+
+void Tracker::wave_piece(const Material& m, const State& outer, const State& star, int family, bool fresh, bool shock,
+                         WaveStates& w) {
   w.states.clear();
   w.shock = false;
   w.unsplit = 0;
@@ -483,7 +515,7 @@ void Tracker::wave(const Material& m, const State& outer, const State& star, int
     w.states.push_back(star);
     return;
   }
-  if (wave_is_shock(m, outer, star.stretch, family)) {
+  if (shock) {
     w.shock = true;
     w.states.push_back(star);
     return;
@@ -526,7 +558,7 @@ void Tracker::fan_states(const Material& m, const State& outer, const State& sta
 
 void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, int piece, double t, double X, double x,
                           std::vector<int>& out) {
-  out.clear();
+  const std::size_t first = out.size();
   const std::size_t jumps = w.states.size() - 1;
   for (std::size_t k = 0; k < jumps; ++k) {
     const State& outer = w.states[k];
@@ -567,7 +599,7 @@ void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, in
     live_fronts_max_ = std::max(live_fronts_max_, ++live_fronts_);
     ++result_.stats.fronts;
   }
-  if (!w.shock && !m.linearly_degenerate() && !out.empty()) {
+  if (!w.shock && !m.linearly_degenerate() && out.size() > first) {
     // A new centred fan: its steps stand for it until one of them interacts.
     int id;
     if (!free_fans_.empty()) {
@@ -590,10 +622,10 @@ void Tracker::emit_fronts(const Material& m, const WaveStates& w, int family, in
     f.j_other = family < 0 ? outer.rapidity + f.psi_a : outer.rapidity - f.psi_a;
     f.speed_a = characteristic_speeds(m, outer, family).lagrangian;
     f.speed_b = characteristic_speeds(m, star, family).lagrangian;
-    f.steps = static_cast<int>(out.size());
+    f.steps = static_cast<int>(out.size() - first);
     f.unsplit = w.unsplit;
     f.capped = w.capped;
-    for (int step : out) nodes_[step].fan = id;
+    for (std::size_t k = first; k < out.size(); ++k) nodes_[out[k]].fan = id;
   }
   if (live_fronts_ > scene_.solver.max_fronts) {
     recorder_.stop(budget_stop_reason(scene_, Budget::fronts, t));  // the run stops after this interaction
@@ -847,14 +879,14 @@ void Tracker::emit_waves(const Meeting& g, const RiemannSolution& sol, int dropl
   wl.states.clear();
   wr.states.clear();
   if (!g.left_boundary && droplet >= 0) {
-    wave(*mL, g.left_region.state, sol.left, -1, !in.smooth_in.any_smooth, wl);
     emit_smooth_ = smooth_out[0];
-    emit_fronts(*mL, wl, -1, g.left_piece, t, XL, g.x, emitted_left_);
+    emit_wave(*mL, g.left_region.state, sol.left, -1, !in.smooth_in.any_smooth, g.left_piece, t, XL, g.x, wl,
+              emitted_left_);
   }
   if (!g.right_boundary && droplet <= 0) {
-    wave(*mR, g.right_region.state, sol.right, +1, !in.smooth_in.any_smooth, wr);
     emit_smooth_ = smooth_out[1];
-    emit_fronts(*mR, wr, +1, g.right_piece, t, XR, g.x, emitted_right_);
+    emit_wave(*mR, g.right_region.state, sol.right, +1, !in.smooth_in.any_smooth, g.right_piece, t, XR, g.x, wr,
+              emitted_right_);
     // Emitted from the outer state inwards; in space the C+ fan's head (next to the
     // right state) is its rightmost front.
     std::reverse(emitted_right_.begin(), emitted_right_.end());

@@ -652,9 +652,18 @@ class Tracker {
   /// no step of a smooth wave came in) in as many steps as ResolutionPolicy::fan_steps says; a
   /// step going on, one.
   void wave(const Material& m, const State& outer, const State& star, int family, bool fresh, WaveStates& w);
+  /// The same for one piece of a wave whose kind is known (a shock, else a fan).
+  void wave_piece(const Material& m, const State& outer, const State& star, int family, bool fresh, bool shock,
+                  WaveStates& w);
+  /// Emits the wave of `family` from `outer` to `star` as fronts (appended to `out`, from the outer
+  /// state inwards), its states in w (outer first); a wave across an inflection of its law piece
+  /// by piece as composite_wave builds it, each fan its own centred fan.
+  void emit_wave(const Material& m, const State& outer, const State& star, int family, bool fresh, int piece, double t,
+                 double X, double x, WaveStates& w, std::vector<int>& out);
   /// The states of a fan from `outer` to `star` in `steps` equal steps of Ψ (w.states).
   static void fan_states(const Material& m, const State& outer, const State& star, int family, int steps,
                          WaveStates& w);
+  /// Emits the fronts of w, appended to `out`.
   void emit_fronts(const Material& m, const WaveStates& w, int family, int piece, double t, double X, double x,
                    std::vector<int>& out);
   void reanchor(int id, double t);
@@ -1014,7 +1023,7 @@ class Tracker {
 
   // scratch buffers reused by every interaction
   std::vector<int> group_, emitted_left_, emitted_right_, emitted_split_, touched_;
-  WaveStates wave_left_, wave_right_, wave_split_;
+  WaveStates wave_left_, wave_right_, wave_split_, wave_piece_;
 };
 
 /// Gauss–Legendre nodes and weights on [0, 1] for the integrals over a fan's wedge.

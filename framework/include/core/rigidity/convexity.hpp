@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "rigidity/material.hpp"
 
@@ -27,10 +28,17 @@ struct Inflection {
   [[nodiscard]] std::string describe() const;
 };
 
-/// The change of sign of g nearest to s = 1 on a finite `window` (less 2 % of its width in ln s at
-/// either end, where numeric laws are fitted from one side), sampled at 401 stretches even in
-/// ln s; |g| below 2e-3 of the largest c_s there counts as zero (linearly degenerate: above the
-/// round-off of numeric laws' g, below an inflection that matters). None if g keeps one sign.
+/// Every change of sign of g on a finite `window` (less 2 % of its width in ln s at either end,
+/// where numeric laws are fitted from one side), sampled at 401 stretches even in ln s and each
+/// bisected to round-off, in ascending order; |g| below 2e-3 of the largest c_s there counts as
+/// zero (linearly degenerate: above the round-off of numeric laws' g, below an inflection that
+/// matters). Empty if g keeps one sign.
+[[nodiscard]] std::vector<Inflection> find_inflections(const Material& material, StretchRange window);
+
+/// The one of them nearest to s = 1; none if g keeps one sign.
 [[nodiscard]] std::optional<Inflection> find_inflection(const Material& material, StretchRange window);
+
+/// The window Material::inflection_logs scans: the admissible range within [1/100, 100].
+[[nodiscard]] StretchRange inflection_window(const Material& material);
 
 }  // namespace rigidity

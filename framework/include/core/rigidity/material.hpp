@@ -17,8 +17,10 @@
 ///   - no function returns NaN for an admissible argument.
 
 #include <limits>
+#include <mutex>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "rigidity/status.hpp"
 #include "rigidity/stretch.hpp"
@@ -107,8 +109,16 @@ class Material {
   /// Empty if s is admissible, else a sentence saying why not.
   [[nodiscard]] std::string admissibility_violation(Stretch s) const;
 
+  /// ln s of every stretch where the genuine nonlinearity changes sign (rigidity/convexity.hpp:
+  /// find_inflections on the admissible range within [1/100, 100]), ascending; empty for a law
+  /// that is convex there, or linearly degenerate. Between two of them a wave of either family is
+  /// one shock or one fan; a wave across one may be composite. Found once, on first use.
+  [[nodiscard]] const std::vector<double>& inflection_logs() const;
+
  private:
   double rest_density_;
+  mutable std::once_flag inflections_found_;
+  mutable std::vector<double> inflection_logs_;
 };
 
 }  // namespace rigidity

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <limits>
 #include <string_view>
+#include <vector>
 
 #include "rigidity/hyperbolic.hpp"
 #include "rigidity/material.hpp"
@@ -156,6 +157,40 @@ Solved<double> hugoniot_rapidity(const Material& m, const State& outer, Stretch 
 /// `speed` (Brent's method, to round-off). `speed` must lie between the edges' speeds.
 [[nodiscard]] Solved<State> centred_fan_state(const Material& m, int family, double j_other, double psi_a, double psi_b,
                                               double speed);
+
+/// The rapidity of the state at stretch `star` that a shock of family `family` connects to
+/// `outer`, on the Hugoniot locus of the lab-frame jump conditions (hugoniot_rapidity's
+/// closed form and Newton steps, bracketed where they do not settle), to round-off.
+Solved<double> shock_rapidity(const Material& m, const State& outer, Stretch star, int family);
+
+/// True if the material's genuine nonlinearity changes sign strictly between stretches a and b
+/// (Material::inflection_logs): a wave between them may then be composite.
+[[nodiscard]] bool crosses_inflection(const Material& m, Stretch a, Stretch b);
+
+/// One piece of a wave: a shock or a centred fan from the state before it (the wave's outer
+/// state, or the end of the piece before) to `end`.
+struct WavePiece {
+  bool shock = false;
+  State end;
+};
+
+/// The wave of family `family` from `outer` (the state it runs into) to the star stretch, as
+/// Liu's entropy condition builds it for a law whose genuine nonlinearity changes sign: pieces
+/// from the outer state inwards, each shock or fan, whose speeds never increase inwards; a shock
+/// attached to a fan runs at the fan edge's characteristic speed (it is sonic there). Built as a
+/// march from the outer state: where some chord from the current state along its Hugoniot locus
+/// is faster than its characteristic, a shock to the farthest fastest chord (sonic at its end
+/// where that is inside the wave, by Lax's lemma: the chord speed is stationary along the locus
+/// exactly where it equals the far state's characteristic speed); otherwise a fan along the
+/// integral curve up to the first state from which a chord catches up with the fan's own speed
+/// (at the latest the next inflection), with the shock attached there. Chords are sampled at
+/// 48 stretches per piece and each sonic point found by Brent's method to round-off: a feature
+/// of the law narrower than ~1/48 of a piece's range in ln s can be missed. For a convex law,
+/// or a wave between two inflections, one piece (wave_is_shock decides which).
+struct CompositeWave {
+  std::vector<WavePiece> pieces;
+};
+[[nodiscard]] Solved<CompositeWave> composite_wave(const Material& m, const State& outer, Stretch star, int family);
 
 /// What the jump conditions ask of a stretch: s, p and e + p (NaN until evaluated).
 struct JumpLaws {
