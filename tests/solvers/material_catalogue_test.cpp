@@ -7,11 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <string>
 
 #include "config_text.hpp"
 #include "exact/bisection.hpp"
+#include "exact/newtonian_hull.hpp"
 #include "rigidity/errors.hpp"
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/solve.hpp"
@@ -284,6 +286,54 @@ TEST(MaterialCatalogue, MurnaghanTakesAPistonsShockToTheHugoniotState) {
     ++checked;
   }
   EXPECT_GT(checked, 20);
+}
+
+// ---- Landau's cubic law: a composite wave and its closed-form sonic point -------------------
+
+TEST(MaterialCatalogue, LandausCubicLawMeetsTheWallInAShockAttachedToAFanAtTheClosedFormSonicPoint) {
+  // σ = E ε (1 − β ε − δ ε²): the tangent from the bar's strain a = 0.06 touches σ at
+  // t = −(a + β/δ)/2 = −0.015 (Berjamin et al.'s closed form for a cubic; σ(t) − σ(a) = σ'(t)(t − a)
+  // divided by (t − a)² leaves 2 δ t + β + δ a = 0). The wall's wave is a shock from a to t with a
+  // compression fan attached there, down to the strain at which the bar stops. Against the
+  // Newtonian hull construction (exact/newtonian_hull.hpp): the relativistic terms are O(c_s²),
+  // c_s ≈ 0.01 c. Measured: the sample behind the shock at −0.01511 (the fan falls 1.1e-4 per
+  // sample there), the wall's strain 3.4e-8 from the hull's, the profile behind the shock 4.2e-8
+  // from it (mean).
+  const double E = 1e-4, beta = -1.5, delta = 50.0, a = 0.06, v0 = 0.0009, t_end = 80.0;
+  const double sonic = -(a + beta / delta) / 2.0;
+  const exact::newtonian::Law law{[&](double e) { return E * e * (1.0 - beta * e - delta * e * e); }, 1.0, -0.06, 0.08};
+  const exact::newtonian::State outer{a, v0};
+  // The bar stops at the wall: the C− wave's star velocity is 0.
+  const double star =
+      root([&](double e) { return exact::newtonian::build_wave(law, outer, -1, e).star_velocity(); }, -0.06, a - 1e-9);
+  const exact::newtonian::Wave hull = exact::newtonian::build_wave(law, outer, -1, star);
+  ASSERT_EQ(hull.pattern(1e-4), "SR");
+  EXPECT_NEAR(hull.strain[1], sonic, 1e-5);  // the reference's own sonic vertex
+
+  const RunResult r = solve(load(catalogue_text("landau_cubic.yaml")));
+  ASSERT_EQ(r.status, "ok") << r.stop_reason;
+  std::vector<const SnapshotSample*> strain;
+  for (const SnapshotSample& x : r.snapshots)
+    if (x.quantity == Quantity::s) strain.push_back(&x);
+  ASSERT_EQ(strain.size(), 2001u);
+  // The shock: the largest jump between neighbouring samples, from the bar's strain to the sonic one.
+  std::size_t shock = 1;
+  for (std::size_t k = 1; k < strain.size(); ++k)
+    if (std::abs(strain[k]->value - strain[k - 1]->value) > std::abs(strain[shock]->value - strain[shock - 1]->value))
+      shock = k;
+  EXPECT_NEAR(strain[shock - 1]->value - 1.0, a, 1e-12);
+  EXPECT_LT(strain[shock]->value - 1.0, sonic + 1e-5);
+  EXPECT_GT(strain[shock]->value - 1.0, sonic - 2e-4);
+  EXPECT_NEAR(strain.back()->value - 1.0, star, 2e-7);
+  double difference = 0.0;
+  for (std::size_t k = shock; k < strain.size(); ++k) {
+    const double xi = (strain[k]->X - 1.0) / t_end;  // from the wall, at label 1
+    difference += std::abs(strain[k]->value - 1.0 - hull.at(xi).strain);
+  }
+  difference /= static_cast<double>(strain.size() - shock);
+  std::printf("Landau cubic: behind the shock %.6g (sonic %.6g), wall %.10g (hull %.10g), mean difference %.3g\n",
+              strain[shock]->value - 1.0, sonic, strain.back()->value - 1.0, star, difference);
+  EXPECT_LT(difference, 4e-7);
 }
 
 }  // namespace

@@ -1059,15 +1059,15 @@ void Tracker::link_right_waves(const Meeting& g, int right_holder) {
 }
 
 void Tracker::resolve_group(std::vector<int>& group, double t) {
-  // Interactions that keep recreating themselves at one instant (a fan whose steps would
-  // converge: a material not convex in the sense the Riemann solver assumes) stop the run.
+  // Interactions that keep recreating themselves at one instant (fronts emitted converging, as a
+  // fan's steps would on a law whose inflections were missed) stop the run.
   if (t != last_interaction_t_) {
     last_interaction_t_ = t;
     interactions_at_this_t_ = 0;
   } else if (++interactions_at_this_t_ > 100 * (static_cast<long>(nodes_.size()) + 100)) {
     throw NumericalError("the interactions at t = " + number(t) +
                          " do not advance in time: the waves of a material keep recreating each other there"
-                         " (a material not convex in the sense the Riemann solver assumes?)");
+                         " (an inflection of its law narrower than the scan of Material::inflection_logs?)");
   }
   policy_.after_interaction(live_fronts_, light_fronts_, light_bodies_);
   if (++result_.stats.interactions > scene_.solver.max_interactions) {
