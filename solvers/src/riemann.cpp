@@ -445,15 +445,22 @@ RiemannSolution solve_riemann(const Material& left_material, const State& left, 
     const Material& m = left_material;
     const double j_plus = left.rapidity + m.riemann_psi(left.stretch);
     const double j_minus = right.rapidity - m.riemann_psi(right.stretch);
-    const double psi_star = 0.5 * (j_plus - j_minus);
+    double psi_star = 0.5 * (j_plus - j_minus);
     const double rapidity_star = 0.5 * (j_plus + j_minus);
     if (beyond_psi(m, psi_star, End::compression)) return beyond_range(m, End::compression, psi_star, impact);
     if (min_pressure >= m.max_tension()) {
+      // At the parting pressure to within the precision of Ψ* the contact carries no force and
+      // the sides move together: it holds, at exactly that pressure (see solve_wall).
       const Outcome<double> parting = psi_at_pressure(m, min_pressure);
       if (!parting.ok()) return failed(parting);
-      if (psi_star < parting.value) {
+      const double round_off =
+          64.0 * kEps *
+          (std::abs(left.rapidity) + std::abs(m.riemann_psi(left.stretch)) + std::abs(right.rapidity) +
+           std::abs(m.riemann_psi(right.stretch)) + std::abs(parting.value));
+      if (psi_star < parting.value - round_off) {
         return parted_pair(WaveCurve(m, left, Side::left), WaveCurve(m, right, Side::right), min_pressure);
       }
+      psi_star = std::max(psi_star, parting.value);
     }
     if (beyond_psi(m, psi_star, End::tension)) return beyond_range(m, End::tension, psi_star, impact);
     const Solved<Stretch> star = m.stretch_at_psi(psi_star);
@@ -479,8 +486,11 @@ RiemannSolution solve_riemann(const Material& left_material, const State& left, 
     // If even at the parting pressure the left side does not catch up with the right, they part.
     const Outcome<double> at_parting = f(d.hi);
     if (!at_parting.ok()) return failed(at_parting);
-    if (at_parting.value < 0.0) return parted_pair(lc, rc, min_pressure);
-    level_at_parting = at_parting.value == 0.0;
+    // Sides that catch up at the parting pressure to within the precision of their rapidities
+    // there hold, at exactly that pressure (see solve_wall).
+    const double round_off = 64.0 * kEps * (std::abs(left.rapidity) + std::abs(right.rapidity) + 1.0);
+    if (at_parting.value < -round_off) return parted_pair(lc, rc, min_pressure);
+    level_at_parting = std::abs(at_parting.value) <= round_off;
   }
   // Start from the left state, or for one material on both sides from the star state the
   // rarefaction curves would give (exact for weak waves), with a step to match; the guess is
@@ -501,7 +511,7 @@ RiemannSolution solve_riemann(const Material& left_material, const State& left, 
   if (std::isnan(at_start.value))
     return failed(numerical_failure<double>(Status::not_converged, kBeyondDoubles, left_material));
   double z = start;
-  bool settled = at_start.value == 0.0;
+  bool settled = at_start.value == 0.0 || level_at_parting;
   if (!settled && &left_material == &right_material) {
     // One material: secant steps from the two-rarefaction guess (off by a third-order term
     // for weak waves; f' = 2 c_s there) reach the root to round-off in a few evaluations.
@@ -591,11 +601,26 @@ RiemannSolution solve_wall(const Material& m, const State& state, Side side, dou
   if (jump_or_fan) {
     if (beyond_psi(m, psi_star, End::compression)) return beyond_range(m, End::compression, psi_star, impact);
     // A wall that cannot pull lets go before the material would reach that tension (the
-    // rigid fluid cannot even be put in tension: its curve ends at p = 0).
+    // rigid fluid cannot even be put in tension: its curve ends at p = 0). A star at the parting
+    // pressure to within the precision of Ψ* (the invariant less the wall's rapidity, each term
+    // to a few dozen ulps: a numeric material's Ψ is a table) carries no force and moves with the
+    // wall: the contact holds, at exactly that pressure, until a wave brings tension. Whether Ψ*
+    // rounds above or below must not decide when the body leaves.
     if (min_pressure >= m.max_tension()) {
       const Outcome<double> parting = psi_at_pressure(m, min_pressure);
       if (!parting.ok()) return failed(parting);
-      if (psi_star < parting.value) return solve_free_end(m, state, side);
+      const double round_off = 64.0 * kEps *
+                               (std::abs(state.rapidity) + std::abs(m.riemann_psi(state.stretch)) +
+                                std::abs(wall_rapidity) + std::abs(parting.value));
+      if (psi_star < parting.value - round_off) return solve_free_end(m, state, side);
+      if (psi_star <= parting.value + round_off) {
+        const Outcome<double> log_s = log_stretch_at_pressure(m, min_pressure);
+        if (!log_s.ok()) return failed(log_s);
+        RiemannSolution out;
+        out.pressure = min_pressure;
+        out.left = out.right = State{wall_rapidity, Stretch::from_log(log_s.value)};
+        return out;
+      }
     }
     if (beyond_psi(m, psi_star, End::tension)) return beyond_range(m, End::tension, psi_star, impact);
     star = on_curve.value;

@@ -354,11 +354,13 @@ std::vector<double> table_breaks(StretchRange window, std::vector<double> law_br
   return breaks;
 }
 
-/// f tabulated on `breaks` to the first tolerance it meets; failure if it gives no number.
+/// f tabulated on `breaks` to the first tolerance it meets; failure if it gives no number. A
+/// law with many breaks (a table of many rows: each row is one) may use a few panels per break.
 Solved<PiecewiseChebyshev> tabulate_law(const std::vector<double>& breaks, const std::function<double(double)>& f) {
   for (const double tolerance : kTableTolerances) {
     PiecewiseChebyshev::Refinement refinement;
     refinement.rel_tol = tolerance;
+    refinement.max_panels = std::max(refinement.max_panels, 4 * breaks.size());
     Solved<PiecewiseChebyshev> table = PiecewiseChebyshev::adapt(breaks, f, refinement);
     if (table.ok()) return table;
   }
