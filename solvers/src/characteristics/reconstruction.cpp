@@ -42,12 +42,14 @@ namespace {
 
 /// The line of one family's invariant over a strip of `width` between two smooth steps of
 /// jumps ja and jb, with the wave's strips beside it `left` and `right` wide (kInf: none): its
-/// slope and its value at the left step, relative to the strip's value; NaN where the strip
-/// is no part of one smooth wave (more than kPlateauRatio times as wide as the narrower strip
-/// beside it, or none beside it) or lies between steps of opposite jumps (an extremum where two
-/// waves meet: each is carried on to it). Each step's value is its sides' values weighted by
-/// the widths of its two strips (a plateau beside it counts as wide as this strip): the value a
-/// line through the strips' means takes at the step.
+/// slope and its value at either step, relative to the strip's value; NaN where the strip is no
+/// part of one smooth wave (more than kPlateauRatio times as wide as the narrower strip beside
+/// it, or none beside it) or lies between steps of opposite jumps (an extremum where two waves
+/// meet: each is carried on to it). A step of a smooth wave moves at the mean of the
+/// characteristic speeds of its sides: it is the characteristic of the mean of its sides' values,
+/// to second order, and that is its value, however wide the strips beside it (where a wave's
+/// steps are irregular, as two trains of weak steps interleaved are, a value weighted by the
+/// strips' widths draws a saw-tooth).
 struct Line {
   double slope = std::numeric_limits<double>::quiet_NaN(), at_a = 0.0, at_b = 0.0;
 };
@@ -55,9 +57,7 @@ Line line_through(double ja, double jb, double width, double left, double right,
   const double narrower = std::min(left, right);
   if (!(width > 0.0) || narrower == kInf || width > plateau_ratio * narrower) return {};
   if (!(ja * jb > 0.0)) return {};
-  const double wl = left <= plateau_ratio * width ? left : width;
-  const double wr = right <= plateau_ratio * width ? right : width;
-  const double at_a = -ja * width / (wl + width), at_b = jb * width / (width + wr);
+  const double at_a = -0.5 * ja, at_b = 0.5 * jb;
   return {(at_b - at_a) / width, at_a, at_b};
 }
 
@@ -88,11 +88,9 @@ Tracker::Wedge Tracker::wedge(int a, int b, int family, double t) const {
   if (nodes_[nodes_[a].prev].right.material != m || nodes_[b].right.material != m) return {kNaN, kNaN};
   const int a2 = strip_edge(nodes_[a].prev, family, &Node::prev);
   const int b2 = strip_edge(nodes_[b].next, family, &Node::next);
-  // A strip beside it bounded by a step of the other sign holds an extremum, no part of the
-  // line: the step next to it stands at the mean of its sides (weighted as this strip).
   const double ja = own_jump(a), jb = own_jump(b);
-  const double left = !is_step(a2, family) ? kInf : own_jump(a2) * ja > 0.0 ? Xa - nodes_[a2].X_at(t) : width;
-  const double right = !is_step(b2, family) ? kInf : own_jump(b2) * jb > 0.0 ? nodes_[b2].X_at(t) - Xb : width;
+  const double left = is_step(a2, family) ? Xa - nodes_[a2].X_at(t) : kInf;
+  const double right = is_step(b2, family) ? nodes_[b2].X_at(t) - Xb : kInf;
   const Line line = line_through(ja, jb, width, left, right, kPlateauRatio);
   if (std::isnan(line.slope)) return {kNaN, kNaN};
   const double at_a = line.at_a + nodes_[a].offset, at_b = line.at_b + nodes_[b].offset;

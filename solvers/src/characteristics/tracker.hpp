@@ -876,9 +876,9 @@ class Tracker {
   /// an interface, a true jump).
   [[nodiscard]] int strip_edge(int from, int family, int Node::*step) const;
   /// The line of `family`'s invariant over the strip between its smooth steps a < b at time t:
-  /// through the values at the steps' own characteristics, each its two sides' values weighted
-  /// by the widths of its two strips (the means of its sides where they are alike, which the
-  /// steps' speeds follow to second order). Its slope in X and its value at a, relative to the
+  /// through the values at the steps' own characteristics, each the mean of its two sides'
+  /// values (a step moves at the mean of their characteristic speeds: the characteristic of
+  /// that mean, to second order). Its slope in X and its value at a, relative to the
   /// strip's; NaN where the strip is no part of one smooth wave: more than kPlateauRatio times
   /// as wide as the narrower strip next to it, with no strip of the wave next to it, between
   /// steps of opposite jumps (an extremum where two waves meet), or holding another material.
