@@ -198,6 +198,8 @@ TEST(Piston, ARampsStaircaseIsWithinTheBoundOfTheExactPush) {
   double bound_coarse = 0.0, bound_fine = 0.0;
   const double coarse = pushed_rod_error(1e-3, &bound_coarse);
   const double fine = pushed_rod_error(1e-4, &bound_fine);
+  std::printf("pushed rod to t = 0.8: error %.3g bound %.3g at 1e-3, error %.3g bound %.3g at 1e-4\n", coarse,
+              bound_coarse, fine, bound_fine);
   // The region the piston has left behind its last step is in the bound (without it the bound
   // is half the error at 1e-3).
   EXPECT_LE(coarse, bound_coarse);
