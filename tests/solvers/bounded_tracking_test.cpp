@@ -161,14 +161,17 @@ TEST(ErrorBound, SmoothWavesStaySecondOrderAfterAShockFormedInThem) {
     SCOPED_TRACE("tolerance " + std::to_string(tolerance));
     const SceneRun coarse = run(kBouncingGasLong, tolerance, 10.0);
     const double error = distance(coarse, fine);
+    std::printf("bouncing gas to t = 10 at %g: error %.3g, bound %.3g\n", tolerance, error,
+                solver_number(coarse.result, "error_bound"));
     EXPECT_LE(error, solver_number(coarse.result, "error_bound") + fine_bound);
     // Sampled as staircases where the weak waves ride, the bar is off by 1.6e-3 at 1e-4 and
-    // the error falls 2.8 times per decade; reconstructed, 1.5e-4 and 10 times. Where a weak
-    // wave riding on a compression step makes it a true jump as it passes (a shock formed of
-    // one step and a weak wave), the line stops at it: 3e-4 at 1e-4.
+    // the error falls 2.8 times per decade; reconstructed, 1.0e-4 and 11 times (1.15e-3 at
+    // 1e-3). Where the weak waves cut the line (each a step of its own wave), 1.8e-4 and 6.4
+    // times; where a weak wave riding on a compression step makes it a true jump as it passes
+    // (a shock formed of one step and a weak wave), the line stops at it: 3e-4 at 1e-4.
     if (tolerance == 1e-4) {
-      EXPECT_LT(error, 2.2 * tolerance);
-      EXPECT_GT(previous / error, 4.0);
+      EXPECT_LT(error, 1.4 * tolerance);
+      EXPECT_GT(previous / error, 8.0);
     }
     previous = error;
   }
