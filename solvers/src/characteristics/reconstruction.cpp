@@ -40,22 +40,33 @@ struct Ramp {
 
 namespace {
 
+/// A strip beside the one a line is drawn over: its width and the jump of the step beyond it
+/// (kInf wide: none).
+struct Beside {
+  double width = kInf, jump = 0.0;
+};
+
 /// The line of one family's invariant over a strip of `width` between two smooth steps of
-/// jumps ja and jb, with the wave's strips beside it `left` and `right` wide (kInf: none): its
-/// slope and its value at either step, relative to the strip's value; NaN where the strip is no
-/// part of one smooth wave (more than kPlateauRatio times as wide as the narrower strip beside
-/// it, or none beside it) or lies between steps of opposite jumps (an extremum where two waves
-/// meet: each is carried on to it). A step of a smooth wave moves at the mean of the
-/// characteristic speeds of its sides: it is the characteristic of the mean of its sides' values,
-/// to second order, and that is its value, however wide the strips beside it (where a wave's
-/// steps are irregular, as two trains of weak steps interleaved are, a value weighted by the
-/// strips' widths draws a saw-tooth).
+/// jumps ja and jb, with the wave's strips beside it: its slope and its value at either step,
+/// relative to the strip's value; NaN where the strip is no part of one smooth wave or lies
+/// between steps of opposite jumps (an extremum where two waves meet: each is carried on to
+/// it). A step of a smooth wave moves at the mean of the characteristic speeds of its sides: it
+/// is the characteristic of the mean of its sides' values, to second order, and that is its
+/// value, however wide the strips beside it. A strip is a plateau between two waves, no part
+/// of either, where it spreads the change of the invariant across it (half of each step's jump)
+/// more than kPlateauRatio times as thinly as the thinner of the strips beside it does, or has
+/// none beside it: so the steps of a wave may be irregular (two trains of steps of different
+/// strengths interleaved, a weak step beside a strong one) and still draw its line.
 struct Line {
   double slope = std::numeric_limits<double>::quiet_NaN(), at_a = 0.0, at_b = 0.0;
 };
-Line line_through(double ja, double jb, double width, double left, double right, double plateau_ratio) {
-  const double narrower = std::min(left, right);
-  if (!(width > 0.0) || narrower == kInf || width > plateau_ratio * narrower) return {};
+Line line_through(double ja, double jb, double width, Beside left, Beside right, double plateau_ratio) {
+  const auto spread = [](double w, double j1, double j2) {
+    const double change = 0.5 * std::abs(j1 + j2);
+    return w < kInf && change > 0.0 ? w / change : kInf;
+  };
+  const double thinner = std::min(spread(left.width, left.jump, ja), spread(right.width, jb, right.jump));
+  if (!(width > 0.0) || thinner == kInf || spread(width, ja, jb) > plateau_ratio * thinner) return {};
   if (!(ja * jb > 0.0)) return {};
   const double at_a = -0.5 * ja, at_b = 0.5 * jb;
   return {(at_b - at_a) / width, at_a, at_b};
@@ -89,8 +100,8 @@ Tracker::Wedge Tracker::wedge(int a, int b, int family, double t) const {
   const int a2 = strip_edge(nodes_[a].prev, family, &Node::prev);
   const int b2 = strip_edge(nodes_[b].next, family, &Node::next);
   const double ja = own_jump(a), jb = own_jump(b);
-  const double left = is_step(a2, family) ? Xa - nodes_[a2].X_at(t) : kInf;
-  const double right = is_step(b2, family) ? nodes_[b2].X_at(t) - Xb : kInf;
+  const Beside left = is_step(a2, family) ? Beside{Xa - nodes_[a2].X_at(t), own_jump(a2)} : Beside{};
+  const Beside right = is_step(b2, family) ? Beside{nodes_[b2].X_at(t) - Xb, own_jump(b2)} : Beside{};
   const Line line = line_through(ja, jb, width, left, right, kPlateauRatio);
   if (std::isnan(line.slope)) return {kNaN, kNaN};
   const double at_a = line.at_a + nodes_[a].offset, at_b = line.at_b + nodes_[b].offset;
@@ -118,8 +129,8 @@ Tracker::Wedge Tracker::train_wedge(int n, double X, int family, int sign, bool 
   const int a2 = train_step(nodes_[a].prev, family, sign, weak, &Node::prev);
   const int b2 = train_step(nodes_[b].next, family, sign, weak, &Node::next);
   const double Xa = nodes_[a].X_at(t), Xb = nodes_[b].X_at(t);
-  const double left = a2 != kNone ? Xa - nodes_[a2].X_at(t) : kInf;
-  const double right = b2 != kNone ? nodes_[b2].X_at(t) - Xb : kInf;
+  const Beside left = a2 != kNone ? Beside{Xa - nodes_[a2].X_at(t), own_jump(a2)} : Beside{};
+  const Beside right = b2 != kNone ? Beside{nodes_[b2].X_at(t) - Xb, own_jump(b2)} : Beside{};
   const Line line = line_through(own_jump(a), own_jump(b), Xb - Xa, left, right, kPlateauRatio);
   if (std::isnan(line.slope) || !(X >= Xa && X <= Xb)) return {kNaN, kNaN};
   return {line.slope, line.at_a, Xa, Xb};
@@ -354,8 +365,9 @@ struct LightQueue {
     if (tb == kNone) return std::numeric_limits<double>::quiet_NaN();
     const long ta2 = nearest(ta + leftwards, leftwards), tb2 = nearest(tb - leftwards, -leftwards);
     const double Xa = at(ta), Xb = at(tb);
-    const Line train_line = line_through(jump(ta), jump(tb), Xb - Xa, ta2 != kNone ? Xa - at(ta2) : kInf,
-                                         tb2 != kNone ? at(tb2) - Xb : kInf, Tracker::kPlateauRatio);
+    const Line train_line =
+        line_through(jump(ta), jump(tb), Xb - Xa, ta2 != kNone ? Beside{Xa - at(ta2), jump(ta2)} : Beside{},
+                     tb2 != kNone ? Beside{at(tb2) - Xb, jump(tb2)} : Beside{}, Tracker::kPlateauRatio);
     return train_line.at_a + train_line.slope * (x - Xa);
   }
 };
@@ -388,8 +400,9 @@ bool Tracker::light_line(int piece, int family, double x, double t, double& j) c
       }
     } else {
       const double Xa = lq.at(a), Xb = lq.at(b);
-      const Line line = line_through(ja, lq.jump(b), Xb - Xa, lq.step(a2) ? Xa - lq.at(a2) : kInf,
-                                     lq.step(b2) ? lq.at(b2) - Xb : kInf, kPlateauRatio);
+      const Line line =
+          line_through(ja, lq.jump(b), Xb - Xa, lq.step(a2) ? Beside{Xa - lq.at(a2), lq.jump(a2)} : Beside{},
+                       lq.step(b2) ? Beside{lq.at(b2) - Xb, lq.jump(b2)} : Beside{}, kPlateauRatio);
       // The region's own value carries the riding steps between a and x that make no train as
       // the jumps they are.
       if (!std::isnan(line.slope)) wave_line = line.at_a + line.slope * (x - Xa), drawn = true;
@@ -415,10 +428,12 @@ double Tracker::light_carried(int piece, const LightQueue& lq, long a, long b, l
   const long outwards = wave_right ? -lq.leftwards : lq.leftwards;
   const long beyond = lq.edge(far + outwards, outwards);
   const double strip = std::abs(lq.at(far) - lq.at(near));
-  const double beyond_width =
-      lq.step(beyond) && lq.jump(beyond) * lq.jump(far) > 0.0 ? std::abs(lq.at(beyond) - lq.at(far)) : kInf;
-  const Line line = wave_right ? line_through(lq.jump(near), lq.jump(far), strip, kInf, beyond_width, kPlateauRatio)
-                               : line_through(lq.jump(far), lq.jump(near), strip, beyond_width, kInf, kPlateauRatio);
+  const Beside beyond_strip = lq.step(beyond) && lq.jump(beyond) * lq.jump(far) > 0.0
+                                  ? Beside{std::abs(lq.at(beyond) - lq.at(far)), lq.jump(beyond)}
+                                  : Beside{};
+  const Line line = wave_right
+                        ? line_through(lq.jump(near), lq.jump(far), strip, Beside{}, beyond_strip, kPlateauRatio)
+                        : line_through(lq.jump(far), lq.jump(near), strip, beyond_strip, Beside{}, kPlateauRatio);
   if (std::isnan(line.slope) || line.slope * lq.jump(near) <= 0.0) return 0.0;
   const Piece& pc = pieces_[piece];
   const double x_left = a != kNone ? lq.at(a) : nodes_[pc.left_end].x_at(lq.t);

@@ -879,8 +879,9 @@ class Tracker {
   /// through the values at the steps' own characteristics, each the mean of its two sides'
   /// values (a step moves at the mean of their characteristic speeds: the characteristic of
   /// that mean, to second order). Its slope in X and its value at a, relative to the
-  /// strip's; NaN where the strip is no part of one smooth wave: more than kPlateauRatio times
-  /// as wide as the narrower strip next to it, with no strip of the wave next to it, between
+  /// strip's; NaN where the strip is no part of one smooth wave: spreading the change of the
+  /// invariant across it more than kPlateauRatio times as thinly as the thinner strip next to
+  /// it (see line_through), with no strip of the wave next to it, between
   /// steps of opposite jumps (an extremum where two waves meet), or holding another material.
   struct Wedge {
     double slope = std::numeric_limits<double>::quiet_NaN(), at_a = 0.0;
