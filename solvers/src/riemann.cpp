@@ -7,6 +7,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -219,6 +220,15 @@ Outcome<double> shock_star_rapidity(const Material& m, const State& outer, Stret
       find_root(checked, lo, hi, m, std::numeric_limits<double>::epsilon() * std::abs(outer.rapidity));
   if (!d.ok()) return d;
   return at(d.value);
+}
+
+/// How far Ψ* may lie from the parting pressure's Ψ and still count as at it: Ψ* is made of the
+/// `terms` (the sides' rapidities and Ψs, the parting Ψ), each to a few dozen ulps (a numeric
+/// material's Ψ is a table).
+double parting_round_off(std::initializer_list<double> terms) {
+  double sum = 0.0;
+  for (const double term : terms) sum += std::abs(term);
+  return 64.0 * kEps * sum;
 }
 
 /// The star rapidity on a wave curve at a star stretch: across a shock from the jump
@@ -453,10 +463,8 @@ RiemannSolution solve_riemann(const Material& left_material, const State& left, 
       // the sides move together: it holds, at exactly that pressure (see solve_wall).
       const Outcome<double> parting = psi_at_pressure(m, min_pressure);
       if (!parting.ok()) return failed(parting);
-      const double round_off =
-          64.0 * kEps *
-          (std::abs(left.rapidity) + std::abs(m.riemann_psi(left.stretch)) + std::abs(right.rapidity) +
-           std::abs(m.riemann_psi(right.stretch)) + std::abs(parting.value));
+      const double round_off = parting_round_off(
+          {left.rapidity, m.riemann_psi(left.stretch), right.rapidity, m.riemann_psi(right.stretch), parting.value});
       if (psi_star < parting.value - round_off) {
         return parted_pair(WaveCurve(m, left, Side::left), WaveCurve(m, right, Side::right), min_pressure);
       }
@@ -609,9 +617,8 @@ RiemannSolution solve_wall(const Material& m, const State& state, Side side, dou
     if (min_pressure >= m.max_tension()) {
       const Outcome<double> parting = psi_at_pressure(m, min_pressure);
       if (!parting.ok()) return failed(parting);
-      const double round_off = 64.0 * kEps *
-                               (std::abs(state.rapidity) + std::abs(m.riemann_psi(state.stretch)) +
-                                std::abs(wall_rapidity) + std::abs(parting.value));
+      const double round_off =
+          parting_round_off({state.rapidity, m.riemann_psi(state.stretch), wall_rapidity, parting.value});
       if (psi_star < parting.value - round_off) return solve_free_end(m, state, side);
       if (psi_star <= parting.value + round_off) {
         const Outcome<double> log_s = log_stretch_at_pressure(m, min_pressure);

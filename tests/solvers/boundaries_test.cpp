@@ -17,6 +17,7 @@
 #include "rigidity/errors.hpp"
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/solve.hpp"
+#include "snapshot_columns.hpp"
 
 namespace rigidity {
 namespace {
@@ -176,9 +177,7 @@ double pushed_rod_error(double tolerance, double* bound) {
     }
     return x;
   };
-  std::map<double, double> v, s, x;
-  for (const SnapshotSample& sample : r.snapshots)
-    (sample.quantity == Quantity::v ? v : sample.quantity == Quantity::s ? s : x)[sample.X] = sample.value;
+  auto [v, s, x] = test::snapshot_columns(r);
   EXPECT_EQ(v.size(), 2001u);
   double sum = 0.0;
   for (const auto& [X, lab] : x) {
@@ -282,9 +281,7 @@ outputs: {snapshots: [{times: [1.5], quantities: [v, s, x], samples: 2001}]}
     const double tau = exact::bisect([&](double ta) { return left.x(ta) + (t - ta) - on; }, 0.0, t);
     return 2.0 * left.phi(tau) - j_minus(left.x(tau), tau);
   };
-  std::map<double, double> v, s, x;
-  for (const SnapshotSample& sample : r.snapshots)
-    (sample.quantity == Quantity::v ? v : sample.quantity == Quantity::s ? s : x)[sample.X] = sample.value;
+  auto [v, s, x] = test::snapshot_columns(r);
   double plus = 0.0, minus = 0.0, lowest = 1e300, highest = -1e300;
   int count = 0;
   for (const auto& [X, lab] : x) {
@@ -336,9 +333,7 @@ solver: {method: characteristics, tolerance: )"
          << tolerance << "}\n";
     const RunResult r = solve(load_scene_string(yaml.str(), "<test>"));
     ASSERT_EQ(r.status, "ok");
-    std::map<double, double> v, s, x;
-    for (const SnapshotSample& sample : r.snapshots)
-      (sample.quantity == Quantity::v ? v : sample.quantity == Quantity::s ? s : x)[sample.X] = sample.value;
+    auto [v, s, x] = test::snapshot_columns(r);
     ASSERT_EQ(x.size(), 4001u);
     double error = 0.0;
     for (const auto& [X, lab] : x) {

@@ -15,6 +15,7 @@
 #include "exact/bisection.hpp"
 #include "rigidity/scene_loader.hpp"
 #include "rigidity/solvers/solve.hpp"
+#include "snapshot_columns.hpp"
 
 namespace rigidity {
 namespace {
@@ -358,10 +359,7 @@ outputs: {snapshots: [{times: [2.6], quantities: [v, s, x], samples: 2001}]}
     const double tau = launched(x, t);
     return 2.0 * phi_p(tau) - j_minus(x_p(tau), tau);
   };
-  std::map<double, double> v, s, x;
-  for (const SnapshotSample& sample : r.snapshots)
-    if (sample.body == 0)
-      (sample.quantity == Quantity::v ? v : sample.quantity == Quantity::s ? s : x)[sample.X] = sample.value;
+  auto [v, s, x] = test::snapshot_columns(r);
   double plus = 0.0, minus = 0.0;
   int count = 0;
   for (const auto& [X, lab] : x) {

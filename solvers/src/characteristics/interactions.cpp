@@ -482,10 +482,7 @@ void Tracker::emit_wave(const Material& m, const State& outer, const State& star
   const Solved<CompositeWave> composite = composite_wave(m, outer, star.stretch, family);
   if (!composite.ok())
     throw NumericalError("the composite wave of a law with an inflection could not be built at t = " + number(t));
-  w.states.assign(1, outer);
-  w.shock = false;
-  w.unsplit = 0;
-  w.capped = false;
+  w.start(outer);
   State from = outer;
   const std::vector<WavePiece>& pieces = composite.value.pieces;
   for (std::size_t k = 0; k < pieces.size(); ++k) {
@@ -505,11 +502,7 @@ void Tracker::wave(const Material& m, const State& outer, const State& star, int
 
 void Tracker::wave_piece(const Material& m, const State& outer, const State& star, int family, bool fresh, bool shock,
                          WaveStates& w) {
-  w.states.clear();
-  w.shock = false;
-  w.unsplit = 0;
-  w.capped = false;
-  w.states.push_back(outer);
+  w.start(outer);
   if (same_state(outer, star)) return;
   if (m.linearly_degenerate()) {
     w.states.push_back(star);

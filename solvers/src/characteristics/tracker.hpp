@@ -333,6 +333,13 @@ struct WaveStates {
   bool shock = false;
   int unsplit = 0;      ///< a new fan held as one front: the steps it splits into (states: outer, star)
   bool capped = false;  ///< that count was cut to kMaxFanSteps
+  /// A wave that starts at `outer` and has no fronts yet.
+  void start(const State& outer) {
+    states.assign(1, outer);
+    shock = false;
+    unsplit = 0;
+    capped = false;
+  }
 };
 
 struct LightQueue;
