@@ -91,20 +91,18 @@ class Session final : public MpiSweep {
       };
       for (std::size_t k = 0; k < kInFlight; ++k)
         for (int r = 1; r < size_; ++r) refill(r);
+      // Rank 0's own first case is taken now, before any row comes back: however slowly its
+      // thread starts, the other ranks' refills cannot take every case before it has one.
+      std::optional<std::size_t> first = take();
 
       std::thread local([&]() {
-        for (;;) {
-          std::optional<std::size_t> index;
-          {
-            const std::lock_guard<std::mutex> guard(lock);
-            index = take();
-          }
-          if (!index) return;
+        for (std::optional<std::size_t> index = first; index;) {
           const SweepRow row = run_sweep_case(sweep, *index, sweep_case_dir(sweep, out_dir, *index));
           if (row.status == "interrupted") return;  // cut short: run again next time
           const std::string line = sweep_csv_row(sweep, row);
           const std::lock_guard<std::mutex> guard(lock);
           finish(0, *index, row.exit_code, line);
+          index = take();
         }
       });
 
