@@ -350,6 +350,44 @@ solver: {method: characteristics, tolerance: )"
   }
 }
 
+// A gas bar (c_s = 0.5) at rest, free on its left, pushed from the right by a bonded piston
+// that ramps to u = -0.1 over t = 0.3 and later pushes again. The ramp's wave is simple
+// (J- = phi - c ln s = 0 carried across it, so ln s = phi/c behind it, J+ = 2 phi_u); its
+// tail leaves the piston at t = 0.3 along a straight characteristic, dX/dt = -c/(s (cosh phi
+// - c sinh phi)) in the labels, and reaches the free end at t_a. From then on the free end
+// holds s = 1 with J- = J+ = 2 phi_u, a plateau that widens behind the reflected wave until
+// the second push arrives (after t = 3). The reflected wave's line ends at its tail: a smooth
+// step of the other family farther off (the second push's) does not carry it on to the end.
+TEST(Piston, TheLineOfAWaveLeavingAFreeEndStopsAtThePlateauBehindIt) {
+  const Scene scene = load_scene_string(R"(
+name: plateau_at_free_end
+materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}
+bodies: [{name: bar, material: gas, position: 0.0, length: 1.0, velocity: 0.0}]
+boundaries:
+  left: {type: free}
+  right: {type: piston, bonded: true, interpolation: linear, table: [[0, 0], [0.3, -0.1], [1.2, -0.1], [1.5, -0.2]]}
+solver: {method: characteristics, tolerance: 1.0e-4}
+time: {end: 2.1}
+outputs: {probes: [{name: end, body: bar, at: left, quantities: [v, s], every: 0.001}]}
+)",
+                                        "<test>");
+  const RunResult r = solve(scene);
+  ASSERT_EQ(r.status, "ok");
+  const double c = 0.5, phi_u = std::atanh(-0.1), s_u = std::exp(phi_u / c);
+  const double t_a = 0.3 + s_u * (std::cosh(phi_u) - c * std::sinh(phi_u)) / c;
+  int checked = 0;
+  for (const ProbeSample& p : r.probes) {
+    if (p.t < t_a + 0.003 || p.t > t_a + 0.04) continue;
+    if (p.quantity == Quantity::v) {
+      EXPECT_NEAR(std::atanh(p.value), 2.0 * phi_u, 1e-5) << "t = " << p.t;  // the staircase's last step: 7e-7
+      ++checked;
+    } else {
+      EXPECT_NEAR(p.value, 1.0, 1e-12) << "t = " << p.t;
+    }
+  }
+  EXPECT_GE(checked, 30);
+}
+
 // A traction holds the end at a given pressure. A rigid rod (rho00 = 1) at rest, held at
 // p = 0.5 on its left end, free on its right: with a = ln(1 + 2p)/2 (Psi of the rigid law at
 // that pressure; J- = 0 carried across the C+ wave, so phi = Psi), the face moves at tanh a =

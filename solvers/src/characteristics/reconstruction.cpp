@@ -144,8 +144,9 @@ Tracker::Wedge Tracker::train_wedge(int n, double X, int family, int sign, bool 
 ///     first step stands half a strip inside it (the plateau keeps its value: the steps
 ///     stand at the means of their sides, and the outermost has the plateau on one); carried
 ///     on to the end or interface that bounds the strip where the wave is reflecting there
-///     (the steps of the other family leaving it are smooth) and the strip is no wider than
-///     kPlateauRatio of the wave's strips.
+///     (the steps of the other family leaving it are smooth, the nearest within the reach
+///     of the wave's next strip) and the strip is no wider than kPlateauRatio of the wave's
+///     strips.
 /// Where the invariant changes so does the lab length per label, ρ = s/γ, at ∂ρ/∂J± = −ρ
 /// (tanh φ ± 1/c_s)/2: the lab position moves by the integral of that change from the strip's
 /// left edge, region by region, less the share of X − X_left of what it comes to over the
@@ -204,14 +205,17 @@ bool Tracker::reconstruct(int n, double X, double t, State& state, double& dx) c
 
 int Tracker::wave_ramps(int n, double X, int family, double t, int l, int r, Ramp* ramps) const {
   const double Xl = nodes_[l].X_at(t), Xr = nodes_[r].X_at(t);
-  // An end or interface from which the steps of a smooth wave of `family` leave: the wave
-  // that makes them by reflection (or transmission) reaches it, and its line goes on to it.
-  const auto reflecting = [&](int edge, int fam) {
+  // An end or interface from which the steps of a smooth wave of `family` leave, the nearest
+  // no farther from it than `reach` (kPlateauRatio of the arriving wave's strip: it left as the
+  // wave's last step arrived): the wave that makes them by reflection (or transmission) reaches
+  // it, and its line goes on to it. A smooth step of that family farther off belongs to another
+  // wave, and the plateau between this wave and the end stands.
+  const auto reflecting = [&](int edge, int fam, double reach) {
     const Node& e = nodes_[edge];
     if (e.kind == NodeKind::front) return false;
     const int step =
         e.kind == NodeKind::right_end ? strip_edge(e.prev, fam, &Node::prev) : strip_edge(e.next, fam, &Node::next);
-    return step != kNone && is_step(step, fam);
+    return step != kNone && is_step(step, fam) && std::abs(nodes_[step].X_at(t) - e.X_at(t)) <= reach;
   };
   int count = 0;
   bool interleaved = false;
@@ -243,7 +247,8 @@ int Tracker::wave_ramps(int n, double X, int family, double t, int l, int r, Ram
     const int r2 = strip_edge(nodes_[r].next, family, &Node::next);
     const Wedge w = is_step(r2, family) ? wedge(r, r2, family, t) : Wedge{};
     const double jump = own_jump(r);
-    const bool on = reflecting(l, -family) && Xr - Xl <= kPlateauRatio * (nodes_[r2].X_at(t) - Xr);
+    const double reach = kPlateauRatio * (nodes_[r2].X_at(t) - Xr);
+    const bool on = Xr - Xl <= reach && reflecting(l, -family, reach);
     if (w.slope * jump > 0.0) ramps[count++] = Ramp{w.at_a + jump, w.slope, Xr, on ? 0 : jump > 0.0 ? 1 : -1};
   }
   const bool in_wedge = count == 1 && ramps[0].sign == 0;
@@ -252,7 +257,8 @@ int Tracker::wave_ramps(int n, double X, int family, double t, int l, int r, Ram
     const Wedge w = is_step(l2, family) ? wedge(l2, l, family, t) : Wedge{};
     const double jump = own_jump(l);
     const double X2 = nodes_[l2].X_at(t);
-    const bool on = reflecting(r, -family) && Xr - Xl <= kPlateauRatio * (Xl - X2);
+    const double reach = kPlateauRatio * (Xl - X2);
+    const bool on = Xr - Xl <= reach && reflecting(r, -family, reach);
     if (w.slope * jump > 0.0)
       ramps[count++] = Ramp{w.at_a + w.slope * (Xl - X2) - jump, w.slope, Xl, on ? 0 : jump > 0.0 ? -1 : 1};
   }
@@ -420,7 +426,8 @@ double Tracker::light_carried(int piece, const LightQueue& lq, long a, long b, l
   // No line reaches x: it lies on a plateau between a (or the left end) and b (or the right
   // end). The wave beside it (right of it from b, or left of it from a) carries on the line of
   // its first strip into it until the line meets the plateau's value, or to the end where the
-  // wave is reflecting there (the fronts of the other family nearest that end are smooth) and
+  // wave is reflecting there (the front of the other family nearest that end is smooth and
+  // no farther from it than the plateau may be wide) and
   // the plateau is no wider than kPlateauRatio of that strip (as on a node piece, see
   // reconstruct).
   const long near = wave_right ? b : a;
@@ -444,7 +451,11 @@ double Tracker::light_carried(int piece, const LightQueue& lq, long a, long b, l
     // to left) is smooth: the wave is reflecting there.
     const LightPiece& lp = light_[piece];
     const std::deque<LightFront>& other = lq.family > 0 ? lp.minus : lp.plus;
-    on = !other.empty() && ((lq.family > 0) == wave_right ? other.front() : other.back()).smooth;
+    if (!other.empty()) {
+      const LightFront& nearest = (lq.family > 0) == wave_right ? other.front() : other.back();
+      const double x_end = wave_right ? x_left : x_right;
+      on = nearest.smooth && std::abs(nearest.x_at(lq.t, -lq.family) - x_end) <= kPlateauRatio * strip;
+    }
   }
   // Relative to the plateau: the wave's strip next to it differs from it by the near step's jump.
   const int clip = on ? 0 : (lq.jump(near) > 0.0) == wave_right ? 1 : -1;
