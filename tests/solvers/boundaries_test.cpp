@@ -350,6 +350,55 @@ solver: {method: characteristics, tolerance: )"
   }
 }
 
+// A gas bar (c_s = 0.5, Psi = -c ln s) at rest, drawn out by a bonded piston on its right
+// whose velocity rises linearly to 0.1 over t = 0.3: a simple wave, J+ = phi - c ln s = 0
+// carried across it, so ln s = phi/c. The characteristic leaving the piston (label 1) at tau
+// carries phi_u(tau) = atanh(v(tau)) on a straight line at dX/dt = -c/(s (cosh phi - c sinh
+// phi)) in the labels; J- = 2 phi_u(tau) on it. The ramp's steps are steps of one smooth wave,
+// the line through their values its profile, at second order in their width.
+TEST(Piston, ARampIntoAGasIsTheSimpleWaveItDraws) {
+  const double c = 0.5, t_end = 1.5;
+  const auto rapidity = [](double tau) { return std::atanh(0.1 * std::min(tau, 0.3) / 0.3); };
+  const auto label_at = [&](double tau) {
+    const double phi = rapidity(tau);
+    const double s = std::exp(phi / c);
+    return 1.0 - c / (s * (std::cosh(phi) - c * std::sinh(phi))) * (t_end - tau);
+  };
+  for (double tolerance : {1e-4, 1e-6}) {
+    std::ostringstream yaml;
+    yaml << R"(
+name: drawn_out
+materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}
+bodies: [{name: bar, material: gas, position: 0.0, length: 1.0, velocity: 0.0}]
+boundaries:
+  left: {type: free}
+  right: {type: piston, bonded: true, interpolation: linear, table: [[0, 0], [0.3, 0.1]]}
+time: {end: 1.5}
+outputs: {snapshots: [{times: [1.5], quantities: [v, s], samples: 2001}]}
+solver: {method: characteristics, tolerance: )"
+         << tolerance << "}\n";
+    const RunResult r = solve(load_scene_string(yaml.str(), "<test>"));
+    ASSERT_EQ(r.status, "ok");
+    auto [v, s, x] = test::snapshot_columns(r);
+    ASSERT_EQ(v.size(), 2001u);
+    double error = 0.0;
+    for (const auto& [X, velocity] : v) {
+      // The head left at tau = 0 (label 1 - c t_end), the tail at 0.3; beyond it the plateau.
+      double phi = 0.0;
+      if (X >= label_at(0.3)) {
+        phi = rapidity(0.3);
+      } else if (X > label_at(0.0)) {
+        phi = rapidity(exact::bisect([&](double tau) { return label_at(tau) - X; }, 0.0, 0.3));
+      }
+      const double psi = -c * std::log(s[X]);
+      error += std::abs(std::atanh(velocity) - phi) + std::abs(psi - (-phi));  // Psi = -c ln s = -phi
+    }
+    error /= 2001.0;
+    EXPECT_LT(error, 0.1 * tolerance) << "tolerance " << tolerance;
+    EXPECT_LT(error, solver_number(r, "error_bound")) << "tolerance " << tolerance;
+  }
+}
+
 // A gas bar (c_s = 0.5) at rest, free on its left, pushed from the right by a bonded piston
 // that ramps to u = -0.1 over t = 0.3 and later pushes again. The ramp's wave is simple
 // (J- = phi - c ln s = 0 carried across it, so ln s = phi/c behind it, J+ = 2 phi_u); its

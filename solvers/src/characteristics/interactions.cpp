@@ -865,6 +865,9 @@ void Tracker::emit_waves(const Meeting& g, const RiemannSolution& sol, int dropl
       in.steps_error[f] += in.steps_taken[f];
     }
   }
+  // A smooth wave's step comes in, or a piston ramp's step starts one: what leaves are steps of
+  // a smooth wave, not new centred fans.
+  const bool of_smooth_wave = in.smooth_in.any_smooth || (in.fronts_in == 0 && emit_smooth_);
   emitted_left_.clear();
   emitted_right_.clear();
   WaveStates& wl = wave_left_;
@@ -873,19 +876,17 @@ void Tracker::emit_waves(const Meeting& g, const RiemannSolution& sol, int dropl
   wr.states.clear();
   if (!g.left_boundary && droplet >= 0) {
     emit_smooth_ = smooth_out[0];
-    emit_wave(*mL, g.left_region.state, sol.left, -1, !in.smooth_in.any_smooth, g.left_piece, t, XL, g.x, wl,
-              emitted_left_);
+    emit_wave(*mL, g.left_region.state, sol.left, -1, !of_smooth_wave, g.left_piece, t, XL, g.x, wl, emitted_left_);
   }
   if (!g.right_boundary && droplet <= 0) {
     emit_smooth_ = smooth_out[1];
-    emit_wave(*mR, g.right_region.state, sol.right, +1, !in.smooth_in.any_smooth, g.right_piece, t, XR, g.x, wr,
-              emitted_right_);
+    emit_wave(*mR, g.right_region.state, sol.right, +1, !of_smooth_wave, g.right_piece, t, XR, g.x, wr, emitted_right_);
     // Emitted from the outer state inwards; in space the C+ fan's head (next to the
     // right state) is its rightmost front.
     std::reverse(emitted_right_.begin(), emitted_right_.end());
   }
   emit_smooth_ = false;
-  if (in.smooth_in.any_smooth) {
+  if (of_smooth_wave) {
     // What a smooth wave's step becomes is a step of that wave, not a centred fan of its own.
     for (int id : emitted_left_) leave_fan(nodes_[id]);
     for (int id : emitted_right_) leave_fan(nodes_[id]);
