@@ -399,6 +399,51 @@ solver: {method: characteristics, tolerance: )"
   }
 }
 
+// The same ramp reflected at the bar's left end while it arrives (t from 2.0 to 2.6): a free
+// end holds s = 1 (p = 0), a bonded wall v = 0, in every sample taken there, however the
+// steps of the arriving and the leaving wave stand around it.
+TEST(Piston, AnEndHoldsItsConditionWhileASmoothWaveReflectsThere) {
+  for (const char* end : {"{type: free}", "{type: wall, bonded: true}"}) {
+    const bool free = std::string(end) == "{type: free}";
+    std::ostringstream yaml;
+    yaml << R"(
+name: reflecting
+materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}
+bodies: [{name: bar, material: gas, position: 0.0, length: 1.0, velocity: 0.0}]
+boundaries:
+  left: )"
+         << end << R"(
+  right: {type: piston, bonded: true, interpolation: linear, table: [[0, 0], [0.3, 0.1]]}
+solver: {method: characteristics, tolerance: 1.0e-4}
+time: {end: 2.7}
+outputs: {probes: [{name: end, body: bar, at: left, quantities: [v, s], every: 0.001}]}
+)";
+    const RunResult r = solve(load_scene_string(yaml.str(), "<test>"));
+    ASSERT_EQ(r.status, "ok");
+    double v_max = 0.0, s_min = 1.0, s_max = 1.0;
+    int samples = 0;
+    for (const ProbeSample& p : r.probes) {
+      if (p.t < 1.99) continue;
+      if (p.quantity == Quantity::v) {
+        v_max = std::max(v_max, std::abs(p.value));
+        ++samples;
+      } else {
+        s_min = std::min(s_min, p.value);
+        s_max = std::max(s_max, p.value);
+      }
+    }
+    EXPECT_GE(samples, 700) << end;
+    if (free) {
+      EXPECT_NEAR(s_min, 1.0, 1e-12) << end;
+      EXPECT_NEAR(s_max, 1.0, 1e-12) << end;
+      EXPECT_GT(v_max, 0.19) << end;  // the end moves off at 2 x 0.1 (rapidities add)
+    } else {
+      EXPECT_LT(v_max, 1e-12) << end;
+      EXPECT_GT(s_max, 1.4) << end;  // stretched to the wave's double
+    }
+  }
+}
+
 // A gas bar (c_s = 0.5) at rest, free on its left, pushed from the right by a bonded piston
 // that ramps to u = -0.1 over t = 0.3 and later pushes again. The ramp's wave is simple
 // (J- = phi - c ln s = 0 carried across it, so ln s = phi/c behind it, J+ = 2 phi_u); its

@@ -167,7 +167,8 @@ bool Tracker::reconstruct(int n, double X, double t, State& state, double& dx) c
     if (!(Xr > Xl)) continue;
     Ramp ramps[kMaxRamps];
     const int count = wave_ramps(n, X, family, t, l, r, ramps);
-    if (count == 0) continue;
+    const double at_end = end_condition(family, X, t, l, r, ramps, count);
+    if (count == 0 && at_end == 0.0) continue;
     double to_X = 0.0, to_r = 0.0;
     bool past = false, one_material = true;  // past: the walk is right of the region that holds X
     for (int k = l; k != r; k = nodes_[k].next) {
@@ -192,6 +193,7 @@ bool Tracker::reconstruct(int n, double X, double t, State& state, double& dx) c
     if (!one_material) continue;
     double correction = 0.0;
     for (int i = 0; i < count; ++i) correction += ramps[i].at(X);
+    correction += at_end;
     j[family > 0 ? 1 : 0] += correction;
     dx += to_X - to_r * (X - Xl) / (Xr - Xl);
     changed = true;
@@ -201,6 +203,41 @@ bool Tracker::reconstruct(int n, double X, double t, State& state, double& dx) c
   if (!s.ok() || !representable(s.value)) return false;
   state = State{0.5 * (j[1] + j[0]), s.value};
   return true;
+}
+
+double Tracker::end_condition(int family, double X, double t, int l, int r, const Ramp* ramps, int count) const {
+  // The strip of `family` next to an end from which that family leaves (a left end for C+, a
+  // right end for C−), and what the end does to the invariant arriving there: a free end or
+  // a traction holds Ψ (the leaving invariant changes as the arriving one does), a wall or a
+  // piston at constant speed holds φ (as much the other way).
+  const bool left = family > 0;
+  const int e = left ? l : r;
+  const Node& end = nodes_[e];
+  if (end.kind != (left ? NodeKind::left_end : NodeKind::right_end) || end.attach == Attach::body) return 0.0;
+  double sigma = 1.0;
+  if (end.attach == Attach::boundary) {
+    const Wall& w = walls_[end.partner];
+    if (w.motion.ramps) return 0.0;  // the staircase of its ramp: see set_offsets
+    sigma = w.traction ? 1.0 : -1.0;
+  }
+  // The arriving wave's line at the end, over the strip of its family there.
+  const int arriving = -family;
+  const int n = left ? e : end.prev;
+  const int la = left ? e : (nodes_[n].kind == NodeKind::front ? strip_edge(n, arriving, &Node::prev) : n);
+  const int ra = left ? strip_edge(end.next, arriving, &Node::next) : e;
+  const double X_end = end.X_at(t);
+  Ramp in[kMaxRamps];
+  const int in_count = wave_ramps(n, X_end, arriving, t, la, ra, in);
+  double arrived = 0.0, leaving = 0.0;
+  for (int i = 0; i < in_count; ++i) arrived += in[i].at(X_end);
+  for (int i = 0; i < count; ++i) leaving += ramps[i].at(X_end);
+  // The leaving invariant is drawn from the end's value to what the strip's far edge has: the
+  // samples there hold the end's condition whatever the lines of the two waves make of it
+  // (a leaving wave of a step or two has no line yet; an arriving one carried on to the end
+  // has moved on from the region's value).
+  const double X_far = nodes_[left ? r : l].X_at(t);
+  const double share = (X_far - X) / (X_far - X_end);
+  return (sigma * arrived - leaving) * std::clamp(share, 0.0, 1.0);
 }
 
 int Tracker::wave_ramps(int n, double X, int family, double t, int l, int r, Ramp* ramps) const {
@@ -245,20 +282,20 @@ int Tracker::wave_ramps(int n, double X, int family, double t, int l, int r, Ram
   // (A step still on the line of its centred fan has the exact fan beyond it, see fan_sample.)
   if (count == 0 && is_step(r, family) && nodes_[r].fan == kNone) {  // a wave right of the plateau
     const int r2 = strip_edge(nodes_[r].next, family, &Node::next);
-    const Wedge w = is_step(r2, family) ? wedge(r, r2, family, t) : Wedge{};
     const double jump = own_jump(r);
     const double reach = kPlateauRatio * (nodes_[r2].X_at(t) - Xr);
     const bool on = Xr - Xl <= reach && reflecting(l, -family, reach);
+    const Wedge w = is_step(r2, family) ? wedge(r, r2, family, t) : Wedge{};
     if (w.slope * jump > 0.0) ramps[count++] = Ramp{w.at_a + jump, w.slope, Xr, on ? 0 : jump > 0.0 ? 1 : -1};
   }
   const bool in_wedge = count == 1 && ramps[0].sign == 0;
   if (!in_wedge && !interleaved && is_step(l, family) && nodes_[l].fan == kNone) {  // a wave left of the plateau
     const int l2 = strip_edge(nodes_[l].prev, family, &Node::prev);
-    const Wedge w = is_step(l2, family) ? wedge(l2, l, family, t) : Wedge{};
     const double jump = own_jump(l);
     const double X2 = nodes_[l2].X_at(t);
     const double reach = kPlateauRatio * (Xl - X2);
     const bool on = Xr - Xl <= reach && reflecting(r, -family, reach);
+    const Wedge w = is_step(l2, family) ? wedge(l2, l, family, t) : Wedge{};
     if (w.slope * jump > 0.0)
       ramps[count++] = Ramp{w.at_a + w.slope * (Xl - X2) - jump, w.slope, Xl, on ? 0 : jump > 0.0 ? -1 : 1};
   }

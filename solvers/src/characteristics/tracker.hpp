@@ -911,6 +911,12 @@ class Tracker {
   /// reconstruct for one family: the lines (ramps, at most kMaxRamps) of its smooth waves over
   /// the strip between l and r, its nearest fronts around label X; how many.
   int wave_ramps(int n, double X, int family, double t, int l, int r, Ramp* ramps) const;
+  /// Where the strip [l, r] of `family` (holding X, with its lines `ramps`) touches an end from
+  /// which that family leaves: what makes the leaving invariant at the end what the end makes
+  /// of the arriving wave's line there (a free end or a traction keeps Ψ, a wall or a steady
+  /// piston φ), drawn in linearly from the strip's far edge; 0 elsewhere (and at ends touching
+  /// another body or a ramping piston).
+  double end_condition(int family, double X, double t, int l, int r, const Ramp* ramps, int count) const;
   static constexpr int kMaxRamps = 5;
   /// The same in a light piece (whose fronts run on lab lines), at lab position x where the
   /// staircase's state is `state`: between two smooth steps of one wave, each family's
