@@ -25,7 +25,7 @@ ResolutionPolicy::ResolutionPolicy(const Scene& scene)
   places_ = std::max(1, places);
   droplet_scale_.assign(scene.bodies.size(), 1.0);
   set_resolution(tolerance_);
-  piece_cap_ = std::max(kMinPiecesPerBody, kPiecesPerBody / tolerance_);
+  piece_cap_ = std::clamp(kPiecesPerBody / tolerance_, kMinPiecesPerBody, kMaxPiecesPerBody);
 }
 
 void ResolutionPolicy::set_resolution(double r) {
