@@ -410,7 +410,9 @@ void Tracker::set_front(int id, int family, FrontKind kind, const Material& m, c
       jump.right_known = true;
     }
     speeds = label_jump_speeds(m, left, right, family, jump);
-    if (kind == FrontKind::shock) {
+    // A true shock's dissipation, for its energy books (account_front_end); a step of a smooth
+    // compression wave books what its jump speed makes instead, and needs none.
+    if (kind == FrontKind::shock && !n.smooth) {
       const Solved<double> rate =
           shock_dissipation_rate(m, left, laws != nullptr ? laws[0] : JumpLaws{}, right,
                                  laws != nullptr ? laws[1] : JumpLaws{}, jump, dissipation_precision_);

@@ -32,14 +32,12 @@ void Tracker::account_front_end(int id, double t) {
     return p_right * std::tanh(right.state.rapidity) - p_left * std::tanh(left.state.rapidity);
   };
   if (!jump) {
-    const double p_left = left.material->pressure(left.state.stretch);
-    const double p_right = right.material->pressure(right.state.stretch);
     // A step of a smooth wave: what its label-jump speed m misses of m[E] = [F] and
     // m[P] = [p], differences of O(1) numbers that are third order in its strength.
-    const double dE = energy_density(*right.material, right.state) - energy_density(*left.material, left.state);
-    const double dP = momentum_density(*right.material, right.state) - momentum_density(*left.material, left.state);
-    waves_energy_ -= (n.dXdt * dE - jump_F(p_left, p_right)) * (t - n.t0);
-    waves_momentum_ -= (n.dXdt * dP - (p_right - p_left)) * (t - n.t0);
+    const Region::Books& l = books_of(left);
+    const Region::Books& r = books_of(right);
+    waves_energy_ -= (n.dXdt * (r.energy - l.energy) - jump_F(l.pressure, r.pressure)) * (t - n.t0);
+    waves_momentum_ -= (n.dXdt * (r.momentum - l.momentum) - (r.pressure - l.pressure)) * (t - n.t0);
     return;
   }
   // Energy removed per unit time at a front moving at m = dX/dt: m[E] − [F], with E the

@@ -117,9 +117,10 @@ struct LabelRay {
 };
 
 /// A state of a material between two nodes, with what crossings ask of it remembered:
-/// Ψ of its stretch and the characteristic speeds of both families (NaN until asked for;
-/// Tracker::psi_of and Tracker::speeds_of fill them). A region is written whole, so a new
-/// state never keeps the old one's values.
+/// Ψ of its stretch, the characteristic speeds of both families, and its pressure, energy
+/// and momentum per unit label for the books of the fronts that bound it (NaN until asked
+/// for; Tracker::psi_of, speeds_of and books_of fill them). A region is written whole, so a
+/// new state never keeps the old one's values.
 struct Region {
   const Material* material = nullptr;
   State state;
@@ -127,6 +128,11 @@ struct Region {
   mutable FrontSpeeds speeds[2] = {{std::numeric_limits<double>::quiet_NaN(), 0.0},
                                    {std::numeric_limits<double>::quiet_NaN(), 0.0}};  ///< [0] C−, [1] C+
   mutable Hyperbolic hyperbolic{0.0, 0.0, 1.0, 1.0};  ///< of its rapidity (cosh 0 until asked for)
+  /// Pressure, energy and momentum density per unit label.
+  struct Books {
+    double pressure = std::numeric_limits<double>::quiet_NaN(), energy = 0.0, momentum = 0.0;
+  };
+  mutable Books books{};
 };
 
 /// A node of a piece's list: a front, a material interface or an end. Between
@@ -156,8 +162,8 @@ struct Node {
   /// (its strength times its speed, the L1 error it adds per unit time), since when, and
   /// the most it can add (strength times the natural length it could sweep).
   double defect_rate = 0.0, defect_since = 0.0, defect_cap = 0.0;
-  /// Shocks: the energy removed per unit time, from the states set with the front (NaN: not
-  /// known, account_front_end computes it from the regions).
+  /// True shocks: the energy removed per unit time, from the states set with the front (NaN:
+  /// not known, account_front_end computes it from the regions; smooth steps need none).
   double dissipation = std::numeric_limits<double>::quiet_NaN();
   /// Fronts: one of the steps that stand for a smooth wave (a fan's, a piston ramp's, and
   /// what such steps become as they cross, reflect, transmit and merge), not a jump of the
@@ -747,6 +753,16 @@ class Tracker {
   double psi_of(const Region& r) {
     if (std::isnan(r.psi)) r.psi = memo_->psi(*r.material, r.state.stretch);
     return r.psi;
+  }
+  /// A region's pressure, energy and momentum density, remembered in the region.
+  const Region::Books& books_of(const Region& r) const {
+    Region::Books& b = r.books;
+    if (std::isnan(b.pressure)) {
+      b.pressure = r.material->pressure(r.state.stretch);
+      b.energy = energy_density(*r.material, r.state);
+      b.momentum = momentum_density(*r.material, r.state);
+    }
+    return b;
   }
   /// The characteristic speeds of family `family` in a region's state, remembered in the region.
   const FrontSpeeds& speeds_of(const Region& r, int family) const {
