@@ -388,7 +388,8 @@ solver: {method: characteristics, tolerance: )"
       if (X >= label_at(0.3)) {
         phi = rapidity(0.3);
       } else if (X > label_at(0.0)) {
-        phi = rapidity(exact::bisect([&](double tau) { return label_at(tau) - X; }, 0.0, 0.3));
+        const double label = X;  // a structured binding is not captured by every compiler
+        phi = rapidity(exact::bisect([&](double tau) { return label_at(tau) - label; }, 0.0, 0.3));
       }
       const double psi = -c * std::log(s[X]);
       error += std::abs(std::atanh(velocity) - phi) + std::abs(psi - (-phi));  // Psi = -c ln s = -phi
