@@ -350,6 +350,31 @@ solver: {method: characteristics, tolerance: )"
   }
 }
 
+// A gas bar (c_s = 0.5, rest, length 1) with `left` as its left end and a bonded piston on its
+// right whose velocity follows `table` linearly, at `tolerance` to `t_end`, with `outputs`.
+std::string gas_bar_on_a_ramp(const std::string& left, const std::string& table, double tolerance, double t_end,
+                              const std::string& outputs) {
+  std::ostringstream yaml;
+  yaml.precision(17);
+  yaml << "name: gas_bar_on_a_ramp\n"
+       << "materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}\n"
+       << "bodies: [{name: bar, material: gas, position: 0.0, length: 1.0, velocity: 0.0}]\n"
+       << "boundaries:\n  left: " << left
+       << "\n  right: {type: piston, bonded: true, interpolation: linear, table: " << table << "}\n"
+       << "solver: {method: characteristics, tolerance: " << tolerance << "}\n"
+       << "time: {end: " << t_end << "}\n"
+       << "outputs:\n"
+       << outputs;
+  return yaml.str();
+}
+
+// The label speed of the C- characteristic in the simple wave a piston on the right of a gas
+// bar at rest draws (J+ = phi - c ln s = 0 carried across it, so s = e^(phi/c)), where the
+// rapidity is phi: c/(s (cosh phi - c sinh phi)).
+double simple_wave_label_speed(double phi, double c) {
+  return c / (std::exp(phi / c) * (std::cosh(phi) - c * std::sinh(phi)));
+}
+
 // A gas bar (c_s = 0.5, Psi = -c ln s) at rest, drawn out by a bonded piston on its right
 // whose velocity rises linearly to 0.1 over t = 0.3: a simple wave, J+ = phi - c ln s = 0
 // carried across it, so ln s = phi/c. The characteristic leaving the piston (label 1) at tau
@@ -359,25 +384,11 @@ solver: {method: characteristics, tolerance: )"
 TEST(Piston, ARampIntoAGasIsTheSimpleWaveItDraws) {
   const double c = 0.5, t_end = 1.5;
   const auto rapidity = [](double tau) { return std::atanh(0.1 * std::min(tau, 0.3) / 0.3); };
-  const auto label_at = [&](double tau) {
-    const double phi = rapidity(tau);
-    const double s = std::exp(phi / c);
-    return 1.0 - c / (s * (std::cosh(phi) - c * std::sinh(phi))) * (t_end - tau);
-  };
+  const auto label_at = [&](double tau) { return 1.0 - simple_wave_label_speed(rapidity(tau), c) * (t_end - tau); };
   for (double tolerance : {1e-4, 1e-6}) {
-    std::ostringstream yaml;
-    yaml << R"(
-name: drawn_out
-materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}
-bodies: [{name: bar, material: gas, position: 0.0, length: 1.0, velocity: 0.0}]
-boundaries:
-  left: {type: free}
-  right: {type: piston, bonded: true, interpolation: linear, table: [[0, 0], [0.3, 0.1]]}
-time: {end: 1.5}
-outputs: {snapshots: [{times: [1.5], quantities: [v, s], samples: 2001}]}
-solver: {method: characteristics, tolerance: )"
-         << tolerance << "}\n";
-    const RunResult r = solve(load_scene_string(yaml.str(), "<test>"));
+    const std::string yaml = gas_bar_on_a_ramp("{type: free}", "[[0, 0], [0.3, 0.1]]", tolerance, t_end,
+                                               "  snapshots: [{times: [1.5], quantities: [v, s], samples: 2001}]\n");
+    const RunResult r = solve(load_scene_string(yaml, "<test>"));
     ASSERT_EQ(r.status, "ok");
     auto [v, s, x] = test::snapshot_columns(r);
     ASSERT_EQ(v.size(), 2001u);
@@ -406,20 +417,10 @@ solver: {method: characteristics, tolerance: )"
 TEST(Piston, AnEndHoldsItsConditionWhileASmoothWaveReflectsThere) {
   for (const char* end : {"{type: free}", "{type: wall, bonded: true}"}) {
     const bool free = std::string(end) == "{type: free}";
-    std::ostringstream yaml;
-    yaml << R"(
-name: reflecting
-materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}
-bodies: [{name: bar, material: gas, position: 0.0, length: 1.0, velocity: 0.0}]
-boundaries:
-  left: )"
-         << end << R"(
-  right: {type: piston, bonded: true, interpolation: linear, table: [[0, 0], [0.3, 0.1]]}
-solver: {method: characteristics, tolerance: 1.0e-4}
-time: {end: 2.7}
-outputs: {probes: [{name: end, body: bar, at: left, quantities: [v, s], every: 0.001}]}
-)";
-    const RunResult r = solve(load_scene_string(yaml.str(), "<test>"));
+    const std::string yaml =
+        gas_bar_on_a_ramp(end, "[[0, 0], [0.3, 0.1]]", 1e-4, 2.7,
+                          "  probes: [{name: end, body: bar, at: left, quantities: [v, s], every: 0.001}]\n");
+    const RunResult r = solve(load_scene_string(yaml, "<test>"));
     ASSERT_EQ(r.status, "ok");
     double v_max = 0.0, s_min = 1.0, s_max = 1.0;
     int samples = 0;
@@ -456,27 +457,18 @@ outputs: {probes: [{name: end, body: bar, at: left, quantities: [v, s], every: 0
 // family farther off (the second push's) does not carry it on across the plateau; samples in
 // the plateau's inner half, and at the end itself in every probe sample, are its state.
 TEST(Piston, TheLineOfAWaveLeavingAFreeEndStopsAtThePlateauBehindIt) {
-  const double c = 0.5, phi_u = std::atanh(-0.1), s_u = std::exp(phi_u / c);
-  const double t_a = 0.3 + s_u * (std::cosh(phi_u) - c * std::sinh(phi_u)) / c;
+  const double c = 0.5, phi_u = std::atanh(-0.1);
+  const double t_a = 0.3 + 1.0 / simple_wave_label_speed(phi_u, c);
   const double tail_speed = c / (std::cosh(2.0 * phi_u) + c * std::sinh(2.0 * phi_u));
   const double after[3] = {0.006, 0.01, 0.014};
-  std::ostringstream yaml;
-  yaml.precision(17);
-  yaml << R"(
-name: plateau_at_free_end
-materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}
-bodies: [{name: bar, material: gas, position: 0.0, length: 1.0, velocity: 0.0}]
-boundaries:
-  left: {type: free}
-  right: {type: piston, bonded: true, interpolation: linear, table: [[0, 0], [0.3, -0.1], [1.2, -0.1], [1.5, -0.2]]}
-solver: {method: characteristics, tolerance: 1.0e-4}
-time: {end: 2.1}
-outputs:
-  probes: [{name: end, body: bar, at: left, quantities: [v, s], every: 0.001}]
-  snapshots: [{times: [)"
-       << t_a + after[0] << ", " << t_a + after[1] << ", " << t_a + after[2]
-       << "], quantities: [v, s], samples: 20001}]\n";
-  const RunResult r = solve(load_scene_string(yaml.str(), "<test>"));
+  std::ostringstream outputs;
+  outputs.precision(17);
+  outputs << "  probes: [{name: end, body: bar, at: left, quantities: [v, s], every: 0.001}]\n"
+          << "  snapshots: [{times: [" << t_a + after[0] << ", " << t_a + after[1] << ", " << t_a + after[2]
+          << "], quantities: [v, s], samples: 20001}]\n";
+  const std::string yaml =
+      gas_bar_on_a_ramp("{type: free}", "[[0, 0], [0.3, -0.1], [1.2, -0.1], [1.5, -0.2]]", 1e-4, 2.1, outputs.str());
+  const RunResult r = solve(load_scene_string(yaml, "<test>"));
   ASSERT_EQ(r.status, "ok");
   int checked = 0;
   for (const SnapshotSample& p : r.snapshots) {

@@ -50,9 +50,9 @@ void Tracker::account_front_end(int id, double t) {
           : shock_dissipation_rate(*right.material, left.state, right.state, dissipation_precision_);
   double rate = from_jump.value;
   if (!from_jump.ok()) {
-    const double jump_E = energy_density(*right.material, right.state) - energy_density(*left.material, left.state);
-    rate = n.dXdt * jump_E -
-           jump_F(left.material->pressure(left.state.stretch), right.material->pressure(right.state.stretch));
+    const Region::Books& l = books_of(left);
+    const Region::Books& r = books_of(right);
+    rate = n.dXdt * (r.energy - l.energy) - jump_F(l.pressure, r.pressure);
   }
   dissipated_ += rate * (t - n.t0);
 }

@@ -140,9 +140,10 @@ class ResolutionPolicy {
   /// a balance.
   void at_droplet(const ErrorLedger& ledger);
   /// At each crack inside a piece of `body`, which has `pieces` pieces: a spray that keeps more
-  /// pieces than its cap alive (kPiecesPerBody / tolerance within its bounds; each collision of unequal rigid-fluid
-  /// pieces knocks a new one off) is held to that many by letting the body's droplet length grow (see
-  /// kDropletSteering); it falls back once the pieces are fewer. The bound reports what it cost.
+  /// pieces than its cap alive (kPiecesPerBody / tolerance within its bounds; each collision
+  /// of unequal rigid-fluid pieces knocks a new one off) is held to that many by letting the
+  /// body's droplet length grow (see kDropletSteering); it falls back once the pieces are
+  /// fewer. The bound reports what it cost.
   void at_crack(int body, int pieces);
 
   // ---- what the run reports ---------------------------------------------------------------
