@@ -72,6 +72,60 @@ Line line_through(double ja, double jb, double width, Beside left, Beside right,
   return {(at_b - at_a) / width, at_a, at_b};
 }
 
+/// The strips of a train beyond one of the two steps around X, up to kTrainReach of them: their
+/// width and the change of the invariant across them (half of each bounding step's jump), and
+/// the same of the strip next to the step alone.
+struct Reach {
+  double width = 0.0, change = 0.0;
+  double next_width = 0.0, next_change = 0.0;
+  void add(double w, double j_near, double j_far) {
+    const double c = 0.5 * (std::abs(j_near) + std::abs(j_far));
+    if (width == 0.0) next_width = w, next_change = c;
+    width += w;
+    change += c;
+  }
+};
+constexpr int kTrainReach = 2;
+
+/// A piece of a line: its slope, its value at `from`, and where it applies.
+struct Segment {
+  double slope = std::numeric_limits<double>::quiet_NaN(), at_from = 0.0, from = 0.0, to = 0.0;
+};
+
+/// The correction at X (relative to the staircase of its jumps) of a train of steps of one
+/// sign, over the strip [Xa, Xb] between two of them of jumps ja and jb, with the train's
+/// strips beyond. A train may be two of different strengths and spacings interleaved (the weak
+/// waves a shock reflects, one train for each wave that crossed it), so its strips alternate
+/// wide and narrow: the strip is a plateau (NaN) where it spreads the change of the invariant
+/// more than `plateau_ratio` times as thinly as the window of it and its strips beyond does on
+/// average, or has none beyond. The steps of one wave (`at_means`) are drawn as the line
+/// through their values, each the mean of its sides (see line_through). Steps riding on a wave
+/// may belong to several interleaved trains, two of them a hair apart: the line through their
+/// means would rise by both halves across the hair; theirs is drawn through the staircase's
+/// values at the strips' midpoints instead (through the step's mean where the strip beyond is
+/// a plateau), which for one even train is the same line.
+Segment train_segment(double X, double Xa, double Xb, double ja, double jb, Reach left, Reach right, bool at_means,
+                      double plateau_ratio) {
+  const double width = Xb - Xa, change = 0.5 * (std::abs(ja) + std::abs(jb));
+  if (!(width > 0.0) || !(ja * jb > 0.0) || left.width + right.width == 0.0) return {};
+  const double window = (left.width + width + right.width) / (left.change + change + right.change);
+  if (width / change > plateau_ratio * window) return {};
+  if (at_means) return {(0.5 * jb + 0.5 * ja) / width, -0.5 * ja, Xa, Xb};
+  const auto inside = [&](const Reach& r) {
+    return r.next_width > 0.0 && r.next_width / r.next_change <= plateau_ratio * window;
+  };
+  const double mid = 0.5 * (Xa + Xb);
+  if (X < mid) {
+    const double X_left = inside(left) ? Xa - 0.5 * left.next_width : Xa;
+    const double at_left = inside(left) ? -ja : -0.5 * ja;
+    const double slope = -at_left / (mid - X_left);
+    return {slope, at_left + slope * (Xa - X_left), Xa, mid};
+  }
+  const double X_right = inside(right) ? Xb + 0.5 * right.next_width : Xb;
+  const double slope = (inside(right) ? jb : 0.5 * jb) / (X_right - mid);
+  return {slope, 0.0, mid, Xb};
+}
+
 }  // namespace
 
 int Tracker::strip_edge(int from, int family, int Node::*step) const {
@@ -126,14 +180,22 @@ Tracker::Wedge Tracker::train_wedge(int n, double X, int family, int sign, bool 
   const int a = train_step(n, family, sign, weak, &Node::prev);
   const int b = a == kNone ? kNone : train_step(nodes_[n].next, family, sign, weak, &Node::next);
   if (b == kNone) return {kNaN, kNaN};
-  const int a2 = train_step(nodes_[a].prev, family, sign, weak, &Node::prev);
-  const int b2 = train_step(nodes_[b].next, family, sign, weak, &Node::next);
   const double Xa = nodes_[a].X_at(t), Xb = nodes_[b].X_at(t);
-  const Beside left = a2 != kNone ? Beside{Xa - nodes_[a2].X_at(t), own_jump(a2)} : Beside{};
-  const Beside right = b2 != kNone ? Beside{nodes_[b2].X_at(t) - Xb, own_jump(b2)} : Beside{};
-  const Line line = line_through(own_jump(a), own_jump(b), Xb - Xa, left, right, kPlateauRatio);
-  if (std::isnan(line.slope) || !(X >= Xa && X <= Xb)) return {kNaN, kNaN};
-  return {line.slope, line.at_a, Xa, Xb};
+  if (!(X >= Xa && X <= Xb)) return {kNaN, kNaN};
+  const auto reach = [&](int from, int Node::*step) {
+    Reach r;
+    for (int k = from, i = 0; i < kTrainReach; ++i) {
+      const int beyond = train_step(nodes_[k].*step, family, sign, weak, step);
+      if (beyond == kNone) break;
+      r.add(std::abs(nodes_[beyond].X_at(t) - nodes_[k].X_at(t)), own_jump(k), own_jump(beyond));
+      k = beyond;
+    }
+    return r;
+  };
+  const Segment line = train_segment(X, Xa, Xb, own_jump(a), own_jump(b), reach(a, &Node::prev), reach(b, &Node::next),
+                                     !weak, kPlateauRatio);
+  if (std::isnan(line.slope)) return {kNaN, kNaN};
+  return {line.slope, line.at_from, line.from, line.to};
 }
 
 /// For each family, the strip of the region right of node n between the nearest fronts of
@@ -406,12 +468,20 @@ struct LightQueue {
     const long ta = nearest(left_start, leftwards);
     const long tb = ta == kNone ? kNone : nearest(right_start, -leftwards);
     if (tb == kNone) return std::numeric_limits<double>::quiet_NaN();
-    const long ta2 = nearest(ta + leftwards, leftwards), tb2 = nearest(tb - leftwards, -leftwards);
+    const auto reach = [&](long from, long by) {
+      Reach r;
+      for (long k = from, i = 0; i < kTrainReach; ++i) {
+        const long beyond = nearest(k + by, by);
+        if (beyond == kNone) break;
+        r.add(std::abs(at(beyond) - at(k)), jump(k), jump(beyond));
+        k = beyond;
+      }
+      return r;
+    };
     const double Xa = at(ta), Xb = at(tb);
-    const Line train_line =
-        line_through(jump(ta), jump(tb), Xb - Xa, ta2 != kNone ? Beside{Xa - at(ta2), jump(ta2)} : Beside{},
-                     tb2 != kNone ? Beside{at(tb2) - Xb, jump(tb2)} : Beside{}, Tracker::kPlateauRatio);
-    return train_line.at_a + train_line.slope * (x - Xa);
+    const Segment line = train_segment(x, Xa, Xb, jump(ta), jump(tb), reach(ta, leftwards), reach(tb, -leftwards),
+                                       !weak, Tracker::kPlateauRatio);
+    return line.at_from + line.slope * (x - line.from);
   }
 };
 
