@@ -94,23 +94,29 @@ struct Segment {
 
 /// The correction at X (relative to the staircase of its jumps) of a train of steps of one
 /// sign, over the strip [Xa, Xb] between two of them of jumps ja and jb, with the train's
-/// strips beyond. A train may be two of different strengths and spacings interleaved (the weak
-/// waves a shock reflects, one train for each wave that crossed it), so its strips alternate
-/// wide and narrow: the strip is a plateau (NaN) where it spreads the change of the invariant
-/// more than `plateau_ratio` times as thinly as the window of it and its strips beyond does on
-/// average, or has none beyond. The steps of one wave (`at_means`) are drawn as the line
-/// through their values, each the mean of its sides (see line_through). Steps riding on a wave
-/// may belong to several interleaved trains, two of them a hair apart: the line through their
-/// means would rise by both halves across the hair; theirs is drawn through the staircase's
-/// values at the strips' midpoints instead (through the step's mean where the strip beyond is
-/// a plateau), which for one even train is the same line.
+/// strips beyond; NaN where the strip is a plateau or has no strip of the train beyond it.
+/// The steps of one wave (`at_means`) are drawn as the line through their values, each the
+/// mean of its sides, the strip a plateau as line_through says. Steps riding on a wave may
+/// belong to several trains interleaved (the weak waves a shock reflects, one train for each
+/// wave that crossed it), of different strengths and spacings, so their strips alternate wide
+/// and narrow, two steps a hair apart: such a strip is a plateau only where it spreads the
+/// change of the invariant more than `plateau_ratio` times as thinly as the window of it and
+/// its strips beyond does on average, and the line through the steps' means would rise by both
+/// halves of a close pair across the hair; theirs is drawn through the staircase's values at
+/// the strips' midpoints instead (through the step's mean where the strip beyond is a
+/// plateau), which for one even train is the same line.
 Segment train_segment(double X, double Xa, double Xb, double ja, double jb, Reach left, Reach right, bool at_means,
                       double plateau_ratio) {
   const double width = Xb - Xa, change = 0.5 * (std::abs(ja) + std::abs(jb));
   if (!(width > 0.0) || !(ja * jb > 0.0) || left.width + right.width == 0.0) return {};
+  if (at_means) {
+    // One wave's steps: a plateau against the thinner strip next to it, as line_through.
+    const auto next = [](const Reach& r) { return r.next_width > 0.0 ? r.next_width / r.next_change : kInf; };
+    if (width / change > plateau_ratio * std::min(next(left), next(right))) return {};
+    return {(0.5 * jb + 0.5 * ja) / width, -0.5 * ja, Xa, Xb};
+  }
   const double window = (left.width + width + right.width) / (left.change + change + right.change);
   if (width / change > plateau_ratio * window) return {};
-  if (at_means) return {(0.5 * jb + 0.5 * ja) / width, -0.5 * ja, Xa, Xb};
   const auto inside = [&](const Reach& r) {
     return r.next_width > 0.0 && r.next_width / r.next_change <= plateau_ratio * window;
   };
