@@ -643,6 +643,18 @@ void Tracker::take_in(const std::vector<int>& group, double t, Incoming& in) {
   // are closed first, while each front's neighbours are still the states it separated.
   // A rarefaction step that leaves as the only step of its family keeps its age (its
   // fan error goes on growing); otherwise the error it carries is booked now.
+  // At an end that holds Ψ (a free end, a traction), a smooth wave goes on as the reflected
+  // wave, reconstructed there as it was here: each step books what the reflection shifts the
+  // reflected wave by (reflection_error), and a fan step with no line of its wave next to it
+  // the drift it has carried, not the staircase the reflected wave no longer is. At an end
+  // that holds φ (a wall, a piston) the shift the arriving steps take at the reflected wave's
+  // head is undone as the reflected steps cross the arriving wave's tail (a wall shifts a
+  // reflected ramp by a twentieth of what a free end does); its books are the crossings'.
+  bool holds_psi = false;
+  for (int id : group) {
+    const Node& e = nodes_[id];
+    if (e.is_end() && e.attach != Attach::body) holds_psi = e.attach == Attach::free || walls_[e.partner].traction;
+  }
   for (int id : group) {
     Node& n = nodes_[id];
     const double defect = close_defect(n, t);
@@ -671,7 +683,10 @@ void Tracker::take_in(const std::vector<int>& group, double t, Incoming& in) {
     if (n.front_kind == FrontKind::rarefaction || n.smooth) {
       // The staircase's error, and the least of it and the reconstruction's (fan_error).
       const double staircase = fan_error(id, t, false);
-      const double reconstructed = std::min(staircase, reconstruction_error(id, t));
+      const double line = reconstruction_error(id, t);
+      const double reconstructed =
+          std::min(staircase, holds_psi && n.smooth && !(line < kInf) ? drift_error(id, t) : line);
+      if (holds_psi && n.smooth) in.carried_in += ledger_.book_fan(reflection_error(id, t));
       in.steps_staircase[f] += staircase;
       if (n.front_kind == FrontKind::rarefaction) {
         ++in.steps_in[f];

@@ -405,14 +405,30 @@ double Tracker::reconstruction_error(int id, double t) const {
   } else {
     return kInf;
   }
-  double error = curvature * width * width / 12.0;
-  if (n.front_kind == FrontKind::rarefaction) {
-    // How far its path has drifted from the characteristic of its mean value.
-    const Region& before = nodes_[n.prev].right;
-    const double mean = 0.5 * (speeds_of(before, n.family).lagrangian + speeds_of(n.right, n.family).lagrangian);
-    error += std::abs(own_jump(id)) * std::abs(n.dXdt - mean) * (t - n.born);
-  }
-  return error;
+  return curvature * width * width / 12.0 + drift_error(id, t);
+}
+
+double Tracker::drift_error(int id, double t) const {
+  const Node& n = nodes_[id];
+  if (n.front_kind != FrontKind::rarefaction) return 0.0;
+  const Region& before = nodes_[n.prev].right;
+  const double mean = 0.5 * (speeds_of(before, n.family).lagrangian + speeds_of(n.right, n.family).lagrangian);
+  return std::abs(own_jump(id)) * std::abs(n.dXdt - mean) * (t - n.born);
+}
+
+double Tracker::reflection_error(int id, double t) const {
+  const Node& n = nodes_[id];
+  const Region& before = nodes_[n.prev].right;
+  if (before.material->linearly_degenerate()) return 0.0;
+  const double other_change =
+      std::abs(speeds_of(before, -n.family).lagrangian - speeds_of(n.right, -n.family).lagrangian);
+  const double own_speed =
+      0.5 * std::abs(speeds_of(before, n.family).lagrangian + speeds_of(n.right, n.family).lagrangian);
+  // The room inward of it: to its neighbour on the side away from the end.
+  const int inward = nodes_[n.prev].is_end() ? n.next : n.prev;
+  const double room = std::abs(nodes_[inward].X_at(t) - n.X_at(t));
+  if (!(own_speed > 0.0)) return 0.0;
+  return 0.25 * std::abs(own_jump(id)) * other_change * room / own_speed;
 }
 
 bool Tracker::light_reconstruct(int piece, double x, double t, State& state) const {

@@ -1009,6 +1009,22 @@ class Tracker {
   /// mean of its sides' characteristic speeds, times its age). kInf where its wave is not
   /// reconstructed next to it (a lone step, a step between plateaus).
   double reconstruction_error(int id, double t) const;
+  /// How far a fan step's path has drifted since it was born from the characteristic of its
+  /// mean value, times its jump: what it carries of the reconstruction's error wherever its
+  /// wave goes on.
+  double drift_error(int id, double t) const;
+  /// The L1 error smooth step `id` makes as it reflects at time t at an end that holds Ψ (a
+  /// free end, a traction), its wave going on as the reflected one (reconstructed there: see
+  /// end_condition; Tracker::take_in): the staircase holds the
+  /// plateau ahead of a wave until its first step, half a strip past the wave's edge, so each
+  /// step of a wave crossing the head of another reaches it a little late, by the change of its
+  /// speed across that head over the time it takes to cross half a strip; a step crossing the
+  /// whole wave makes it up at the tail, but at an end the arriving steps turn back before they
+  /// cross the reflected wave's tail (a free end shifts the reflected wave by about 0.7 δ² in
+  /// the labels for steps δ). Booked as a quarter of the step's jump times the change of the
+  /// other family's speed across it times the time its wave takes to cross the room inward of
+  /// it: nothing in a linearly degenerate body, second order in the step in any other.
+  double reflection_error(int id, double t) const;
   /// Books fan step `id`'s error up to t in the ledger and returns it, for the wave that
   /// carries it on (every error in the bound travels with a wave or stays where booked).
   double book_fan_error(int id, double t, bool smooth_on = true) {
