@@ -408,22 +408,43 @@ void Tracker::enter_light(std::deque<LightFront>& queue, const Node& f, double t
   entered.carried = f.carried;
   entered.smooth = f.smooth;
   const std::size_t n = queue.size();
-  if (!f.smooth || n < 2 || !queue[n - 2].smooth) return;
+  if (!lattice || !f.smooth || n < 2 || !queue[n - 2].smooth) return;
   const double speed = std::abs(speeds_of(f.right, f.family).lagrangian);
-  const double width = speed * (t - queue[n - 2].t0);
-  const auto jump = [](const LightFront& g) { return std::abs(g.j_ahead - g.j_behind); };
-  double error = 0.25 * f.strength * width;  // the staircase's
-  if (!lattice && n >= 3 && queue[n - 3].smooth) {
-    // The line's: the change of slope between the last two strips × their width² / 12.
-    const double before = speed * (queue[n - 2].t0 - queue[n - 3].t0);
-    if (width > 0.0 && before > 0.0) {
-      const double slope = 0.5 * (jump(queue[n - 2]) + jump(entered)) / width;
-      const double slope_before = 0.5 * (jump(queue[n - 3]) + jump(queue[n - 2])) / before;
-      const double mean = 0.5 * (width + before);
-      error = std::min(error, std::abs(slope - slope_before) * mean * mean / 12.0);
+  entered.carried += ledger_.book_fan(0.25 * f.strength * speed * (t - queue[n - 2].t0));  // the staircase's
+}
+
+double Tracker::light_alive_error(int piece) const {
+  const LightPiece& lp = light_[piece];
+  if (lp.lattice) return 0.0;
+  double error = 0.0;
+  for (const int family : {+1, -1}) {
+    const std::deque<LightFront>& q = family > 0 ? lp.plus : lp.minus;
+    // Label widths: the fronts run at light speed, so their lab distances stay as they were.
+    const double speed = std::abs(speeds_of(nodes_[lp.store].right, family).lagrangian);
+    const auto jump = [&](std::size_t k) { return q[k].j_ahead - q[k].j_behind; };
+    const auto width = [&](std::size_t a, std::size_t b) { return speed * std::abs(q[a].intercept - q[b].intercept); };
+    const auto train = [&](std::size_t a, std::size_t b) {
+      return q[a].smooth && q[b].smooth && jump(a) * jump(b) > 0.0 && width(a, b) > 0.0;
+    };
+    const auto slope = [&](std::size_t a, std::size_t b) { return 0.5 * std::abs(jump(a) + jump(b)) / width(a, b); };
+    for (std::size_t k = 0; k < q.size(); ++k) {
+      if (!q[k].smooth) continue;
+      const bool before = k > 0 && train(k - 1, k), after = k + 1 < q.size() && train(k, k + 1);
+      if (before && after) {
+        const double mean = 0.5 * (width(k - 1, k) + width(k, k + 1));
+        error += std::abs(slope(k, k + 1) - slope(k - 1, k)) * mean * mean / 12.0;
+      } else if (before || after) {
+        const std::size_t a = before ? k - 1 : k, b = before ? k : k + 1;
+        error += slope(a, b) * width(a, b) * width(a, b) / 12.0;
+      } else {
+        double room = piece_length(piece);
+        if (k > 0) room = std::min(room, width(k - 1, k));
+        if (k + 1 < q.size()) room = std::min(room, width(k, k + 1));
+        error += 0.25 * std::abs(jump(k)) * room;
+      }
     }
   }
-  entered.carried += ledger_.book_fan(error);
+  return error;
 }
 
 }  // namespace rigidity::characteristics

@@ -254,9 +254,12 @@ Tracker::BoundParts Tracker::error_bound_parts(double t_end) const {
     // A jump that met a smooth wave is off its path by up to about kink × kink_dt / 2.
     if (n.kink > 0.0) error_fans_alive += 0.5 * n.strength * n.kink * std::min(t_end - n.t0, n.kink_dt);
   }
-  for (const LightPiece& lp : light_)
+  for (std::size_t piece = 0; piece < light_.size(); ++piece) {
+    const LightPiece& lp = light_[piece];
     for (const std::deque<LightFront>* queue : {&lp.plus, &lp.minus})
       for (const LightFront& f : *queue) carried_alive += f.carried;
+    if (lp.store != kNone) error_fans_alive += light_alive_error(static_cast<int>(piece));
+  }
   error_fans_alive += ramp_ahead_error(t_end);
   // Each error was measured when it was made. Those of merges and fan steps travel with the
   // waves they were made on, and where a wave splits at an interface or an end its error

@@ -698,12 +698,18 @@ class Tracker {
   void arrive(int piece, int family, double t);
   void absorb_light(int piece, double t);
   /// The front just put at the back of a light or lattice piece's queue takes what node f
-  /// carries. A step that follows another of its wave into the piece carries what sampling
-  /// misses the wave by over the strip between them: where a light piece reconstructs it, the
-  /// line's miss (the change of slope from the strip before × the width² / 12, see
-  /// reconstruction_error); where a lattice piece holds it as a staircase, or no strip of the
-  /// wave came before, the staircase's, σ/4 of the width.
+  /// carries. A lattice piece holds a smooth wave as the staircase of its steps: a step that
+  /// follows another of its wave into it books the staircase's σ/4 of the strip between them.
+  /// A light piece reconstructs it as the node list did: what its line misses the wave by is
+  /// booked where the run ends (light_alive_error).
   void enter_light(std::deque<LightFront>& queue, const Node& f, double t, bool lattice);
+  /// What the lines of a light piece's smooth waves miss them by at time t: for each smooth
+  /// front, the change of its train's slope across it times the strips' width squared over 12
+  /// (a train's first or last step: its slope, the plateau beyond being flat), a lone step the
+  /// staircase's σ/4 of the room to its nearest neighbour. A light piece's waves keep their
+  /// lines as they cross and reflect (its material is linearly degenerate): this is a state
+  /// error, booked where the run ends, as the node list's smooth steps book theirs.
+  double light_alive_error(int piece) const;
   bool merge_light(int piece, int family, double t);
   /// A merge of a light piece's two newest fronts of one family, as merge_light works it out.
   struct LightMerge {
