@@ -305,8 +305,9 @@ outputs: {snapshots: [{times: [8], quantities: [v, s], samples: 4001}]}
 // with a free end: the gas's smooth waves enter the rigid bar (a light piece) and leave it, each
 // strip four to five times as wide there as in the gas. The light piece reconstructs them as
 // the gas did, and books what its lines miss them by where the run ends, not a staircase for
-// every step that enters it: at 1e-4, t = 10, against a run at 1e-6, the bound is 2.2 times
-// the error (4.1 times with the staircases).
+// every step that enters it: at 1e-4, t = 10, against a run at 1e-6, the errors booked cover
+// the error before the stability factor of 2 (3.2e-4 for 2.9e-4; 2.3e-4 without the lines'
+// misses) and the bound is 2.2 times the error (4.1 times with the staircases).
 TEST(ErrorBound, ALightPieceBooksWhatItsLinesMissNotTheStaircasesOfItsEntries) {
   const std::string scene = R"(
 name: rigid_bar_and_slow_gas
@@ -336,7 +337,7 @@ outputs: {snapshots: [{times: [10], quantities: [v, s], samples: 2001}]}
   const SceneRun coarse = run(scene, 1e-4, 10.0);
   const double error = distance(coarse, fine), bound = solver_number(coarse.result, "error_bound");
   std::printf("rigid bar and slow gas at 1e-4, t = 10: error %.3g, bound %.3g\n", error, bound);
-  EXPECT_LE(error, bound + solver_number(fine.result, "error_bound"));
+  EXPECT_LE(error, 0.5 * bound - solver_number(fine.result, "error_bound"));  // before the stability factor
   EXPECT_LT(bound, 3.0 * error);
 }
 
