@@ -74,15 +74,14 @@ Line line_through(double ja, double jb, double width, Beside left, Beside right,
 
 /// The strips of a train beyond one of the two steps around X, up to kTrainReach of them: their
 /// width and the change of the invariant across them (half of each bounding step's jump), and
-/// the same of the strip next to the step alone.
+/// the strip next to the step alone as line_through takes it.
 struct Reach {
   double width = 0.0, change = 0.0;
-  double next_width = 0.0, next_change = 0.0;
+  Beside next;
   void add(double w, double j_near, double j_far) {
-    const double c = 0.5 * (std::abs(j_near) + std::abs(j_far));
-    if (width == 0.0) next_width = w, next_change = c;
+    if (width == 0.0) next = Beside{w, j_far};
     width += w;
-    change += c;
+    change += 0.5 * (std::abs(j_near) + std::abs(j_far));
   }
 };
 constexpr int kTrainReach = 2;
@@ -107,28 +106,28 @@ struct Segment {
 /// plateau), which for one even train is the same line.
 Segment train_segment(double X, double Xa, double Xb, double ja, double jb, Reach left, Reach right, bool at_means,
                       double plateau_ratio) {
+  if (at_means) {  // one wave's steps
+    const Line line = line_through(ja, jb, Xb - Xa, left.next, right.next, plateau_ratio);
+    return std::isnan(line.slope) ? Segment{} : Segment{line.slope, line.at_a, Xa, Xb};
+  }
   const double width = Xb - Xa, change = 0.5 * (std::abs(ja) + std::abs(jb));
   if (!(width > 0.0) || !(ja * jb > 0.0) || left.width + right.width == 0.0) return {};
-  if (at_means) {
-    // One wave's steps: a plateau against the thinner strip next to it, as line_through.
-    const auto next = [](const Reach& r) { return r.next_width > 0.0 ? r.next_width / r.next_change : kInf; };
-    if (width / change > plateau_ratio * std::min(next(left), next(right))) return {};
-    return {(0.5 * jb + 0.5 * ja) / width, -0.5 * ja, Xa, Xb};
-  }
   const double window = (left.width + width + right.width) / (left.change + change + right.change);
   if (width / change > plateau_ratio * window) return {};
-  const auto inside = [&](const Reach& r) {
-    return r.next_width > 0.0 && r.next_width / r.next_change <= plateau_ratio * window;
+  const auto inside = [&](const Reach& r, double j_near) {
+    return r.next.width < kInf && r.next.width / (0.5 * std::abs(j_near + r.next.jump)) <= plateau_ratio * window;
   };
   const double mid = 0.5 * (Xa + Xb);
   if (X < mid) {
-    const double X_left = inside(left) ? Xa - 0.5 * left.next_width : Xa;
-    const double at_left = inside(left) ? -ja : -0.5 * ja;
+    const bool beside = inside(left, ja);
+    const double X_left = beside ? Xa - 0.5 * left.next.width : Xa;
+    const double at_left = beside ? -ja : -0.5 * ja;
     const double slope = -at_left / (mid - X_left);
     return {slope, at_left + slope * (Xa - X_left), Xa, mid};
   }
-  const double X_right = inside(right) ? Xb + 0.5 * right.next_width : Xb;
-  const double slope = (inside(right) ? jb : 0.5 * jb) / (X_right - mid);
+  const bool beside = inside(right, jb);
+  const double X_right = beside ? Xb + 0.5 * right.next.width : Xb;
+  const double slope = (beside ? jb : 0.5 * jb) / (X_right - mid);
   return {slope, 0.0, mid, Xb};
 }
 
