@@ -133,11 +133,11 @@ def main():
     rows = []
     with tempfile.TemporaryDirectory() as work:
         for name, (scene, sound_speed, reference_tolerance) in SCENES.items():
-            ref_summary, reference = run(a.rigidity, scene, ["solver.tolerance=%g" % reference_tolerance], work)
+            ref_summary, reference = run(a.rigidity, scene, ["solver.tolerance=%g" % reference_tolerance, "solver.resolution=tolerance"], work)
             print("%s: reference at tolerance %g, bound %.2g" % (name, reference_tolerance,
                                                                 ref_summary["solver"]["error_bound"]), file=sys.stderr)
             for tol in tolerances:
-                summary, samples = run(a.rigidity, scene, ["solver.tolerance=%g" % tol], work)
+                summary, samples = run(a.rigidity, scene, ["solver.tolerance=%g" % tol, "solver.resolution=tolerance"], work)
                 rows.append(dict(scene=name, method="characteristics", resolution=tol,
                                  error=error(samples, reference, sound_speed),
                                  bound=summary["solver"]["error_bound"], time_s=summary["stats"]["wall_time_s"],

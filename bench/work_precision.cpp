@@ -213,7 +213,7 @@ struct Config {
 
   [[nodiscard]] std::string solver_block() const {
     return finite_volume ? format("{method: finite_volume, cells: %d, order: %d, flux: %s}", cells, order, flux.c_str())
-                         : format("{method: characteristics, tolerance: %.17g}", tolerance);
+                         : format("{method: characteristics, tolerance: %.17g, resolution: tolerance}", tolerance);
   }
   [[nodiscard]] std::string resolution() const {
     return finite_volume ? std::to_string(cells) : format("%.0e", tolerance);

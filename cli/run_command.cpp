@@ -105,7 +105,7 @@ std::string solver_line(const RunResult& result) {
   const double cells = result.solver_number("cells");
   const double order = result.solver_number("order");
   if (!std::isnan(tolerance)) asked.push_back("tolerance " + number(tolerance, 6));
-  if (!std::isnan(resolution)) asked.push_back("resolved at " + number(resolution, 3));
+  if (!std::isnan(resolution) && bound > 0.0) asked.push_back("resolved at " + number(resolution, 3));
   if (!std::isnan(bound))
     asked.push_back("error bound " +
                     (!std::isnan(tolerance) && bound > tolerance ? number_above(bound, tolerance) : number(bound, 3)));

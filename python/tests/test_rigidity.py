@@ -444,7 +444,8 @@ def test_a_scene_dict_holding_a_python_law_runs_as_the_built_in_law(tmp_path):
     import json
     m = rigidity.Material.from_function(p=gas_pressure, stretch=(0.3, 3.0))
     scene = wall_scene("constant_sound_speed", 0.4, t_end=3.0, sound_speed=GAS_V)
-    scene["solver"] = {"tolerance": 1e-4}
+    # Resolved to the tolerance: `auto` could take neighbouring resolutions for the two laws.
+    scene["solver"] = {"tolerance": 1e-4, "resolution": "tolerance"}
     built_in = rigidity.run(scene)
     scene["materials"]["m"] = m
     from_python = rigidity.run(scene)
@@ -528,7 +529,7 @@ def test_one_law_as_a_plugin_a_formula_and_a_python_function_gives_the_same_runs
             "name": "three_ways",
             "plugins": [MURNAGHAN_PLUGIN],
             "materials": {"solid": law},
-            "solver": {"tolerance": 1e-5},
+            "solver": {"tolerance": 1e-5, "resolution": "tolerance"},  # one resolution for all three
         }
         if tube:
             out["bodies"] = [{"name": "bar", "material": "solid",

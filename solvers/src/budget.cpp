@@ -92,7 +92,7 @@ std::string budget_stop_reason(const Scene& scene, Budget budget, double t) {
   if (!traits.fanned.empty())
     why.push_back("the rarefaction fans of " + join(traits.fanned, " and ") +
                   ", once something reaches them, are split into steps of " +
-                  readable(characteristics::ResolutionPolicy::fan_step_for(scene.solver.tolerance)) +
+                  readable(characteristics::ResolutionPolicy::fan_step_for(scene.solver.wave_resolution())) +
                   " in their Riemann invariant (0.7 √solver.tolerance), and every step that reaches a contact or an "
                   "end makes new fronts");
   if (traits.interfaces || traits.several_bodies || !traits.parting.empty())

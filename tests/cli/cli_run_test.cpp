@@ -148,7 +148,8 @@ const std::string kThreeBarsScene =
 
 TEST_F(CliTest, RunShowsABoundJustAboveTheToleranceAboveIt) {
   const std::string scene = write_file("three_bars.yaml", kThreeBarsScene);
-  const CliOutcome r = rigidity("run " + scene + " --out run");
+  // Resolved to the tolerance (`auto` would bring the bound under it).
+  const CliOutcome r = rigidity("run " + scene + " --out run --set solver.resolution=tolerance");
   ASSERT_EQ(r.exit_status, 0) << r.err;
   const mini_json::Value summary = mini_json::parse(read_text(dir() / "run" / "summary.json"));
   const double bound = summary["solver"]["error_bound"].number;
@@ -367,8 +368,9 @@ TEST_F(CliTest, ACrushMidRunWritesItsOutputsUpToThatInstantWithItsErrorBound) {
 }
 
 TEST_F(CliTest, ACrushTheBoundCouldMoveSaysAFinerToleranceMayMoveOrRemoveIt) {
-  // At tolerance 0.05 the bound at the stop is about 0.05: not small against anything.
-  const CliOutcome r = rigidity("run " + shell_quote(kCrushedScene) + " --out run --set solver.tolerance=0.05");
+  // Resolved to a tolerance of 0.05 the bound at the stop is about 0.05: not small against anything.
+  const CliOutcome r = rigidity("run " + shell_quote(kCrushedScene) +
+                                " --out run --set solver.tolerance=0.05 --set solver.resolution=tolerance");
   ASSERT_EQ(r.exit_status, 3) << r.out << r.err;
   EXPECT_TRUE(contains(r.err, "a finer solver.tolerance may move or remove this stop")) << r.err;
   const mini_json::Value summary = mini_json::parse(read_text(dir() / "run" / "summary.json"));
@@ -423,7 +425,8 @@ const std::string kCascadeScene =
 
 TEST_F(CliTest, RunThatReachesABudgetStopsWithTheOutputsSoFarAndExitsOne) {
   const std::string scene = write_file("cascade.yaml", kCascadeScene);
-  const CliOutcome r = rigidity("run " + scene + " --out run --set solver.max_interactions=200");
+  const CliOutcome r =
+      rigidity("run " + scene + " --out run --set solver.max_interactions=200 --set solver.resolution=tolerance");
   EXPECT_EQ(r.exit_status, 1) << r.err;
   EXPECT_TRUE(contains(r.err, "stopped: more than solver.max_interactions = 200 interactions by t = 2.0"));
   EXPECT_TRUE(contains(r.err, "solver.tolerance"));  // the advice for this scene

@@ -263,7 +263,7 @@ bodies:
 boundaries:
   left: {type: wall}
   right: {type: wall}
-solver: {tolerance: %.17g}
+solver: {tolerance: %.17g, resolution: tolerance}
 time: {end: %.17g}
 outputs:
   snapshots:

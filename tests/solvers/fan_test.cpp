@@ -31,7 +31,7 @@ name: withdrawing_piston
 materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}
 bodies: [{name: bar, material: gas, length: 1.0, velocity: 0.0, stretch: 0.6}]
 boundaries: {left: {type: piston, velocity: -0.2}, right: {type: wall}}
-solver: {tolerance: %.17g}
+solver: {tolerance: %.17g, resolution: tolerance}
 time: {end: %.17g}
 outputs:
   snapshots: [{times: [%.17g], quantities: [s, v, x], samples: 20001}]
@@ -129,7 +129,7 @@ name: crossed_fan
 materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}
 bodies: [{name: bar, material: gas, length: 1.0, velocity: 0.0}]
 boundaries: {left: {type: piston, velocity: -0.3, bonded: true}, right: {type: wall, bonded: true}}
-solver: {tolerance: %.17g}
+solver: {tolerance: %.17g, resolution: tolerance}
 time: {end: 3}
 outputs:
   snapshots: [{times: [3], quantities: [s, v], samples: 4001}]
@@ -183,7 +183,7 @@ name: crossed_fan
 materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}
 bodies: [{name: bar, material: gas, length: 1.0, velocity: 0.0}]
 boundaries: {left: {type: piston, velocity: -0.3, bonded: true}, right: {type: wall, bonded: true}}
-solver: {tolerance: )" + std::to_string(tolerance) + R"(}
+solver: {tolerance: )" + std::to_string(tolerance) + R"(, resolution: tolerance}
 time: {end: 3}
 )",
                                                 "<test>"));

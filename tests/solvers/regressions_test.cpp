@@ -26,7 +26,7 @@ bodies:
     material: gas
     segments: [{length: 0.5, stretch: 0.5}, {length: 0.5, stretch: 1.0}]
 boundaries: {left: {type: wall}, right: {type: wall}}
-solver: {tolerance: 1.0e-12}
+solver: {tolerance: 1.0e-12, resolution: tolerance}
 time: {end: 0.5}
 )",
                                               "<test>"));
@@ -132,7 +132,7 @@ bodies:
   - {name: b64, material: m, position: 51.795359, length: 0.554744, velocity: 0.0499}
   - {name: b65, material: m, position: 52.400104, length: 0.672211, velocity: -0.1722}
 boundaries: {left: {type: wall}, right: {type: wall}}
-solver: {method: characteristics, tolerance: 1.0e-3}
+solver: {method: characteristics, tolerance: 1.0e-3, resolution: tolerance}
 time: {end: 9.2}
 outputs: {fronts: true}
 )",

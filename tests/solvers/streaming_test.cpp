@@ -225,7 +225,8 @@ TEST_F(Streaming, EventsCsvJoinsTheBodiesOfAnEvent) {
 TEST_F(Streaming, ABudgetStopsTheRunWithTheOutputsUpToTheTimeReached) {
   for (const char* budget : {"solver.max_interactions=200", "solver.max_fronts=200"}) {
     SCOPED_TRACE(budget);
-    const Scene scene = load_scene_string(kCascade, "<test>", {budget});
+    // Resolved to the tolerance: `auto` would take a pilot that finishes within the budget.
+    const Scene scene = load_scene_string(kCascade, "<test>", {budget, "solver.resolution=tolerance"});
     const RunResult result = run_streaming(scene, "run");
     const fs::path dir = base_ / "run";
 
@@ -314,8 +315,11 @@ class InterruptingRecorder final : public RunRecorder {
 TEST_F(Streaming, AnInterruptStopsTheRunWithStatusInterrupted) {
   for (const char* method : {"characteristics", "finite_volume"}) {
     SCOPED_TRACE(method);
+    // Resolved to the tolerance: the run streams into the recorder as it goes (`auto` keeps
+    // its runs in memory and hands on the one it takes).
     const Scene scene =
-        load_scene_string(kBouncingBar, "<test>", {std::string("solver.method=") + method, "solver.cells=50"});
+        load_scene_string(kBouncingBar, "<test>",
+                          {std::string("solver.method=") + method, "solver.cells=50", "solver.resolution=tolerance"});
     const fs::path dir = base_ / method;
     StreamingRecorder files(scene, dir.string());
     InterruptingRecorder recorder(files, 40.0);

@@ -54,6 +54,10 @@ void RunRecorder::on_progress(ProgressCallback callback, double delay_s, double 
 }
 
 bool RunRecorder::poll_slowly(double t, long fronts_alive, long interactions) {
+  if (outer_ != nullptr && outer_->stop_pending_ && !stop_pending_) {
+    stop_pending_ = true;
+    stop_reason_ = outer_->stop_reason_;
+  }
   if (stop_pending_) {
     stop_pending_ = false;
     status_ = RunStatus::stopped;
@@ -83,13 +87,15 @@ bool RunRecorder::poll_slowly(double t, long fronts_alive, long interactions) {
   polls_at_check_ = polls_;
   next_check_ = polls_ + stride;
 
-  if (!progress_) return false;
+  const RunRecorder& reporter = progress_ || outer_ == nullptr ? *this : *outer_;
+  if (!reporter.progress_) return false;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  if (elapsed < progress_delay_s_) return false;
-  if (last_report_ != start_ && std::chrono::duration<double>(now - last_report_).count() < progress_interval_s_)
+  if (elapsed < reporter.progress_delay_s_) return false;
+  if (last_report_ != start_ &&
+      std::chrono::duration<double>(now - last_report_).count() < reporter.progress_interval_s_)
     return false;
   last_report_ = now;
-  progress_(RunProgress{t, fronts_alive, interactions, elapsed});
+  reporter.progress_(RunProgress{t, fronts_alive, interactions, elapsed});
   return false;
 }
 

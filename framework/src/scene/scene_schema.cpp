@@ -305,10 +305,12 @@ Key solver_key() {
               .above(0.0)
               .defaults_to(1.0e-12),
           Key::choice("resolution", {"tolerance", "auto"},
-                      "characteristics: how finely waves are resolved: to the tolerance (the bound then "
-                      "usually comes out below it), or `auto`: as coarsely as keeps the bound near the tolerance, "
-                      "measured by a quiet pilot run at 10 x tolerance first")
-              .defaults_to(std::string("tolerance")),
+                      "characteristics: how finely waves are resolved: `auto` aims the error bound at the "
+                      "tolerance (a pilot run at 10 x tolerance measures it, runs at the resolution it points to "
+                      "follow, finer than the tolerance where the scene books more than it, within about a second "
+                      "of extra work; the run with the least bound is kept), or `tolerance`: to the tolerance itself, "
+                      "one run")
+              .defaults_to(std::string("auto")),
           Key::integer("max_fronts",
                        "characteristics: most fronts alive at once, about 210 bytes each (the default is about "
                        "210 MB); beyond it the run stops cleanly with status `stopped` and the outputs up to then")

@@ -436,6 +436,14 @@ double Tracker::light_alive_error(int piece) const {
       } else if (before || after) {
         const std::size_t a = before ? k - 1 : k, b = before ? k : k + 1;
         error += slope(a, b) * width(a, b) * width(a, b) / 12.0;
+        // The strip beyond, to a step of the other sign no more than kPlateauRatio of the
+        // wave's strips away, holds an extremum (see Tracker::reconstruction_error): half of
+        // what it misses.
+        const std::size_t c = before ? k + 1 : k - 1, d = before ? k + 2 : k - 2;
+        if (c < q.size() && q[c].smooth && jump(c) * jump(k) < 0.0 && width(c, k) <= kPlateauRatio * width(a, b)) {
+          const double other = d < q.size() && train(std::min(c, d), std::max(c, d)) ? slope(c, d) : 0.0;
+          error += 0.5 * extremum_miss(width(c, k), jump(k), slope(a, b), jump(c), other);
+        }
       } else {
         double room = piece_length(piece);
         if (k > 0) room = std::min(room, width(k - 1, k));

@@ -8,7 +8,7 @@
 namespace rigidity::characteristics {
 
 ResolutionPolicy::ResolutionPolicy(const Scene& scene)
-    : tolerance_(scene.solver.tolerance), bodies_(static_cast<double>(scene.bodies.size())) {
+    : finest_(scene.solver.wave_resolution()), bodies_(static_cast<double>(scene.bodies.size())) {
   // The threshold of weak waves: each interface or contact holding back a wave weaker than
   // `weak_` adds at most weak_ × (the speeds of the waves on its two sides, ~1) per unit time
   // to the L1 error; over the time light takes to cross the bodies' natural length, for every
@@ -24,8 +24,8 @@ ResolutionPolicy::ResolutionPolicy(const Scene& scene)
   places += static_cast<int>(scene.bodies.size()) - 1;
   places_ = std::max(1, places);
   droplet_scale_.assign(scene.bodies.size(), 1.0);
-  set_resolution(tolerance_);
-  piece_cap_ = std::clamp(kPiecesPerBody / tolerance_, kMinPiecesPerBody, kMaxPiecesPerBody);
+  set_resolution(finest_);
+  piece_cap_ = std::clamp(kPiecesPerBody / finest_, kMinPiecesPerBody, kMaxPiecesPerBody);
 }
 
 void ResolutionPolicy::set_resolution(double r) {
@@ -55,7 +55,7 @@ void ResolutionPolicy::at_droplet(const ErrorLedger& ledger) {
   double r = ledger.merges() + ledger.fans() < kDropletBalance * (ledger.droplets() + ledger.scattered())
                  ? std::min(kCoarsestResolution, kResolutionStep * resolution_)
                  : resolution_ / kResolutionStep;
-  r = std::max(r, tolerance_);
+  r = std::max(r, finest_);
   if (r != resolution_) set_resolution(r);
 }
 

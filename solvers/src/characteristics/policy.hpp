@@ -165,7 +165,7 @@ class ResolutionPolicy {
     }
   }
 
-  double tolerance_ = 0.0;
+  double finest_ = 0.0;        ///< the resolution the scene asks for (SolverDecl::wave_resolution)
   double bodies_ = 0.0;        ///< bodies of the scene
   double total_length_ = 0.0;  ///< natural length of all bodies
   int places_ = 1;             ///< interfaces and contacts among which weak_ shares its budget

@@ -386,6 +386,7 @@ double Tracker::reconstruction_error(int id, double t) const {
   const double right = is_step(r, n.family) ? wedge(id, r, n.family, t).slope : std::nan("");
   const double X = n.X_at(t);
   double curvature = 0.0, width = 0.0;  // the change of slope across the step, and the strips' width
+  double extremum = 0.0;
   if (!std::isnan(left) && !std::isnan(right)) {
     curvature = std::abs(right - left);
     width = 0.5 * (nodes_[r].X_at(t) - nodes_[l].X_at(t));
@@ -401,10 +402,34 @@ double Tracker::reconstruction_error(int id, double t) const {
     if (std::isnan(next)) return kInf;
     curvature = std::abs(next - (inward_right ? right : left));
     width = std::abs(nodes_[near].X_at(t) - X);
+    // Beyond it, the first step of a wave of the other sign (not one of two waves interleaved),
+    // no more than kPlateauRatio of the wave's strips away (a wider strip is a plateau between
+    // the two waves): the strip between them holds an extremum, half of what it misses booked
+    // by either step (extremum_miss).
+    const int beyond = inward_right ? l : r;
+    if (is_step(beyond, n.family) && own_jump(beyond) * own_jump(id) < 0.0) {
+      const int after = strip_edge(inward_right ? nodes_[beyond].prev : nodes_[beyond].next, n.family,
+                                   inward_right ? &Node::prev : &Node::next);
+      const bool wave_beyond = is_step(after, n.family) && own_jump(after) * own_jump(beyond) > 0.0;
+      const bool interleaved = is_step(after, n.family) && !wave_beyond;
+      const double across = std::abs(nodes_[beyond].X_at(t) - X);
+      const double other = !wave_beyond   ? std::nan("")
+                           : inward_right ? wedge(after, beyond, n.family, t).slope
+                                          : wedge(beyond, after, n.family, t).slope;
+      if (!interleaved && across <= kPlateauRatio * width)
+        extremum = 0.5 * extremum_miss(across, own_jump(id), std::abs(inward_right ? right : left), own_jump(beyond),
+                                       std::abs(other));
+    }
   } else {
     return kInf;
   }
-  return curvature * width * width / 12.0 + drift_error(id, t);
+  return curvature * width * width / 12.0 + extremum + drift_error(id, t);
+}
+
+double Tracker::extremum_miss(double across, double j1, double s1, double j2, double s2) {
+  if (!(s1 > 0.0 && s2 > 0.0)) return 0.25 * std::max(std::abs(j1), std::abs(j2)) * across;
+  const double gap = std::abs(across - 0.5 * std::abs(j1) / s1 - 0.5 * std::abs(j2) / s2);
+  return 0.5 * gap * gap * s1 * s2 / (s1 + s2);
 }
 
 double Tracker::drift_error(int id, double t) const {

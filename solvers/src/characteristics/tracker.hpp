@@ -926,6 +926,15 @@ class Tracker {
   static constexpr int kMaxTrainWalk = 64;
   [[nodiscard]] Wedge wedge(int a, int b, int family, double t) const;
   static constexpr double kPlateauRatio = 3.0;
+  /// What the plateau of a strip `across` wide between two waves of one family and opposite
+  /// signs (an extremum) misses the extremum by: each wave's line, of slope s1 or s2 (in
+  /// magnitude) from the mean of its last step (of jump j1 or j2), reaches the plateau half
+  /// a step on, and carried on they meet at the extremum of the profile they draw, a tent on
+  /// the plateau (or a notch in it) of base g, the gap between where they reach it, and height
+  /// g s1 s2/(s1 + s2): the L1 error of its triangle (a piston's ramp up and down: the tent
+  /// from its linear rows). Without the slope of either (a lone step beyond): the most the
+  /// peak can stand off the plateau, half the larger jump over the strip's width, halved.
+  static double extremum_miss(double across, double j1, double s1, double j2, double s2);
   /// The state at label X of the region right of node n with the smooth waves through it
   /// reconstructed, and the lab position's change dx (see reconstruction.cpp). Returns false
   /// where nothing is reconstructed.

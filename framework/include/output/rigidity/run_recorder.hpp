@@ -95,10 +95,21 @@ class RunRecorder {
   /// complete up to t. True: the run must stop; the solver closes its books at t
   /// (= t_reached()) and returns. Cheap enough to call at every interaction.
   [[nodiscard]] bool poll(double t, long fronts_alive, long interactions) {
-    if (stop_pending_ || detail::interrupt_flag.load(std::memory_order_relaxed) || ++polls_ >= next_check_) [[unlikely]]
+    if (stop_pending_ || detail::interrupt_flag.load(std::memory_order_relaxed) || ++polls_ >= next_check_ ||
+        (outer_ != nullptr && outer_->stop_pending_)) [[unlikely]]
       return poll_slowly(t, fronts_alive, interactions);
     return false;
   }
+
+  /// A stop was asked for (stop(), or an interrupt) that no poll() has acted on yet, or one has.
+  [[nodiscard]] bool stop_asked() const {
+    return stop_pending_ || stopped() || detail::interrupt_flag.load(std::memory_order_relaxed);
+  }
+  /// This recorder keeps a run for `outer` (`solver.resolution: auto` keeps each run it makes
+  /// in memory until it has chosen one): its polls drive outer's progress callback (a progress
+  /// line, Python's signal handlers) when it has none of its own, and a stop asked of outer
+  /// stops its run too.
+  void relay_to(RunRecorder& outer) { outer_ = &outer; }
 
   /// Once poll() has returned true: why, and the time the run reached.
   [[nodiscard]] RunStatus status() const { return status_; }
@@ -131,6 +142,7 @@ class RunRecorder {
   bool poll_slowly(double t, long fronts_alive, long interactions);
 
   bool stop_pending_ = false;
+  RunRecorder* outer_ = nullptr;  ///< see relay_to
   RunStatus status_ = RunStatus::ok;
   double t_reached_ = 0.0;
   std::string stop_reason_;

@@ -95,9 +95,14 @@ struct SolverDecl {
   /// wave a jump: exact), else kNonlinearDefaultTolerance, which any scene can afford; the
   /// error bound is reported, not warned of.
   bool tolerance_given = false;
-  /// characteristics: resolve waves as coarsely as keeps the error bound near the tolerance
-  /// (a pilot run at kPilotResolution × tolerance measures the bound), not to the tolerance.
-  bool auto_resolution = false;
+  /// characteristics: aim the error bound at the tolerance (`resolution: auto`, the default):
+  /// runs at other resolutions measure the bound and the run keeps the one that meets the
+  /// tolerance at least cost; false: resolve waves to the tolerance itself.
+  bool auto_resolution = true;
+  /// characteristics: what the tracker resolves waves to (fan steps, merges, weak waves); 0 for
+  /// the tolerance. `resolution: auto` sets it for each run it makes.
+  double resolution = 0.0;
+  [[nodiscard]] double wave_resolution() const { return resolution > 0.0 ? resolution : tolerance; }
   long max_fronts = 1000000;  ///< characteristics: most fronts alive at once; beyond, the run stops (status stopped)
   long max_interactions = 100000000;  ///< characteristics: most interactions of a run; beyond, the run stops
   int cells = 400;                    ///< finite volume
