@@ -378,10 +378,10 @@ std::string gas_bar_on_a_ramp(const std::string& left, const std::string& table,
 // 2.6e-5 for a bound of 3.6e-5 (1.4e-5 without the tent).
 TEST(Piston, AGasBarDrawnOutAndPushedBackBooksItsExtremum) {
   const auto run = [](double tolerance) {
-    return solve(load_scene_string(
-        gas_bar_on_a_ramp("{type: free}", "[[0, 0], [0.5, 0.2], [1.0, 0.0]]", tolerance, 1.5,
-                          "  snapshots: [{times: [1.5], quantities: [v, s], samples: 2001}]\n"),
-        "<test>"));
+    return solve(
+        load_scene_string(gas_bar_on_a_ramp("{type: free}", "[[0, 0], [0.5, 0.2], [1.0, 0.0]]", tolerance, 1.5,
+                                            "  snapshots: [{times: [1.5], quantities: [v, s], samples: 2001}]\n"),
+                          "<test>"));
   };
   const RunResult fine = run(1e-6), coarse = run(1e-4);
   ASSERT_EQ(coarse.status, "ok");
