@@ -133,7 +133,7 @@ TEST(Piston, ALinearTableRampsTheVelocityBetweenRows) {
 // characteristics and sharing nothing with the solver: J- = 0 everywhere, so Psi = phi, and a
 // C+ characteristic of the rigid law runs at c in the lab: the one through (x, t) left the
 // piston at tau with x_p(tau) + t - tau = x, and carries the piston's rapidity at tau.
-RunResult pushed_rod(double tolerance, double t_end) {
+RunResult pushed_rod(double tolerance, double t_end, const char* resolution = "tolerance") {
   std::string table = "[";
   for (int i = 0; i <= 15; ++i) {
     const double t = 0.1 * i;
@@ -148,11 +148,11 @@ bodies: [{name: rod, material: rod, position: 0.0, length: 1.0, velocity: 0.0}]
 boundaries:
   left: {type: piston, bonded: true, interpolation: linear, table: %s}
   right: {type: free}
-solver: {tolerance: %.17g}
+solver: {tolerance: %.17g, resolution: %s}
 time: {end: %.17g}
 outputs: {snapshots: [{times: [%.17g], quantities: [v, s, x], samples: 2001}]}
 )",
-                table.c_str(), tolerance, t_end, t_end);
+                table.c_str(), tolerance, resolution, t_end, t_end);
   return solve(load_scene_string(yaml, "<test>"));
 }
 
@@ -234,6 +234,35 @@ TEST(Piston, TheBoundCoversTheStaircaseWhereTheReflectionMeetsTheRamp) {
     const double error = sum / 2000.0;
     EXPECT_GT(error, 3e-4) << "tolerance " << tolerance << ": the reflection is not there";
     EXPECT_LE(error, coarse.solver_number("error_bound") + fine.solver_number("error_bound")) << tolerance;
+  }
+}
+
+// The same push to t = 1.5, aimed at the tolerance (`resolution: auto`, the default): the error
+// against a run at 1e-6 falls with the tolerance, at least fivefold per decade (measured
+// 7.5e-4, 3.9e-5, 9.3e-7 at 1e-2, 1e-3, 1e-4). Resolved to the tolerance it is the same at 1e-2
+// and 1e-3 (a fan step's widest, 0.02, at both), and the bound, which books the piston's
+// staircase at first order, above the tolerance: the aim resolves finer until it is within it.
+TEST(Piston, TheAimedPushedRodsErrorFallsWithTheTolerance) {
+  const RunResult fine = pushed_rod(1e-6, 1.5);
+  const auto error = [&](const RunResult& r) {
+    double sum = 0.0;
+    std::map<std::pair<double, Quantity>, double> reference;
+    for (const SnapshotSample& sample : fine.snapshots) reference[{sample.X, sample.quantity}] = sample.value;
+    for (const SnapshotSample& sample : r.snapshots) {
+      const double exact = reference.at({sample.X, sample.quantity});
+      if (sample.quantity == Quantity::v) sum += std::abs(std::atanh(sample.value) - std::atanh(exact));
+      if (sample.quantity == Quantity::s) sum += std::abs(std::log(sample.value / exact));
+    }
+    return sum / 2001.0;
+  };
+  double previous = 1.0;
+  for (double tolerance : {1e-2, 1e-3, 1e-4}) {
+    const RunResult aimed = pushed_rod(tolerance, 1.5, "auto");
+    ASSERT_EQ(aimed.status, "ok");
+    const double e = error(aimed);
+    EXPECT_LT(e, 0.2 * previous) << "tolerance " << tolerance;
+    EXPECT_LT(e, tolerance) << "tolerance " << tolerance;
+    previous = e;
   }
 }
 
