@@ -1,0 +1,218 @@
+// `solver.resolution: auto`, the default: the run aims its error bound at the tolerance. Runs
+// at several resolutions measure how the scene's bound and work follow the resolution, each
+// keeping its outputs in memory; the one chosen is handed to the recorder.
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rigidity/run_recorder.hpp"
+#include "rigidity/solvers/characteristics.hpp"
+#include "tracker.hpp"
+
+namespace rigidity {
+
+namespace {
+
+/// `solver.resolution: auto`: the first run resolves waves this many times more coarsely than
+/// the tolerance (its work is 10 to 100 times smaller).
+constexpr double kPilotResolution = 10.0;
+/// The runs after it aim their bound at this fraction of the tolerance, so that a bound that
+/// scales a little more slowly than the runs so far said still lands within it.
+constexpr double kAutoTarget = 0.8;
+/// A run whose bound fell by less than (the resolution's refinement)^kLeastFall from the run
+/// before ends the aim: the bound has stopped following the resolution.
+constexpr double kLeastFall = 0.3;
+/// No run resolves waves more coarsely than this: the bound's picture of small errors that add
+/// up fails beyond it (random Hooke and rigid bars pushed into a wall: error 9.2e-3 against a
+/// bound of 5.6e-3 at 0.1), so a tolerance coarser than a tenth of it has a pilot no coarser.
+constexpr double kCoarsestAim = 1e-2;
+/// Runs after the pilot, at most.
+constexpr int kAutoChecks = 3;
+/// The finest resolution a run may take, as a fraction of the tolerance.
+constexpr double kFinestResolution = 0.01;
+/// The most interactions a run finer than the tolerance may take (about a second of solving):
+/// a bound the tolerance itself cannot meet is bought down only as far as that.
+constexpr long kAimInteractions = 2'000'000;
+/// How the work and the bound follow the resolution r, until two runs have measured it:
+/// interactions ∝ r^-work (at least 1.2: 1 where fan steps cross, 2 where the cap on fronts holds them;
+/// measured 1.1 to 1.7 on random scenes from 1e-3 to 1e-5), bound ∝ r^bound (1 where fan steps,
+/// merges and weak waves make it: 0.16 × r for a gas bar between a bonded wall and a piston from
+/// 1e-4 to 1e-5; 0.7 to 1 on random scenes, where transmissions carry errors on and grow them).
+struct Scaling {
+  double work = 1.5, bound = 1.0;
+  /// Measured between runs a (coarser) and b, where both did enough to tell.
+  void measure(double r_a, double interactions_a, double bound_a, double r_b, double interactions_b, double bound_b) {
+    const double decades = std::log(r_a / r_b);
+    if (interactions_a > 1e3 && interactions_b > 1e3)
+      work = std::clamp(std::log(interactions_b / interactions_a) / decades, 1.2, 2.5);
+    if (bound_a > 0.0 && bound_b > 0.0) bound = std::clamp(std::log(bound_a / bound_b) / decades, 0.5, 2.0);
+  }
+};
+
+/// A run of the scene at `resolution`, its outputs kept in memory until it is chosen.
+struct Attempt {
+  double resolution = 0.0;
+  RunResult result;
+  [[nodiscard]] bool finished() const { return result.status == "ok" || result.status == "inadmissible"; }
+  [[nodiscard]] double bound() const { return result.solver_number("error_bound"); }
+  [[nodiscard]] double interactions() const { return static_cast<double>(std::max(1L, result.stats.interactions)); }
+  /// Droplets were left: the scene may be a spray.
+  [[nodiscard]] bool droplets() const { return result.solver_number("droplets") > 0.0; }
+  /// A spray coarsened the resolution: its droplets' error does not fall with it.
+  [[nodiscard]] bool spray() const { return result.solver_number("wave_resolution") > resolution; }
+};
+
+Attempt attempt(const Scene& scene, double resolution, long max_interactions, RunRecorder& outer) {
+  Scene s = scene;
+  s.solver.resolution = resolution;
+  s.solver.max_interactions = std::min(max_interactions, scene.solver.max_interactions);
+  MemoryRecorder memory;
+  memory.relay_to(outer);
+  Attempt a{resolution, characteristics::Tracker(s, memory).run()};
+  memory.complete(a.result, scene.t_end);
+  return a;
+}
+
+/// Hands what `chosen` recorded in memory to `recorder`, as if it had run there.
+void replay(RunResult& chosen, RunRecorder& recorder) {
+  for (const FrontSegment& f : chosen.fronts) recorder.front(f);
+  for (const ProbeSample& p : chosen.probes) recorder.probe(p);
+  for (const SnapshotSample& s : chosen.snapshots) recorder.snapshot(s);
+  for (const RunEvent& e : chosen.events) recorder.event(e);
+  chosen.fronts.clear();
+  chosen.probes.clear();
+  chosen.snapshots.clear();
+  chosen.events.clear();
+  if (chosen.status == "inadmissible") {
+    recorder.halt(chosen.t_reached, chosen.stop_reason);
+  } else if (chosen.status != "ok") {  // stopped by a budget, or interrupted
+    if (chosen.status == "stopped") recorder.stop(chosen.stop_reason);
+    (void)recorder.poll(chosen.t_reached, -1, chosen.stats.interactions);
+  }
+}
+
+/// The value of the ladder of preferred numbers (Renard's R10: 1, 1.25, 1.6, 2, 2.5, 3.2, 4, 5,
+/// 6.3, 8 in each decade) at or below `r` (`up`: at or above it). Resolutions the aim picks
+/// come from it, so that two scenes whose pilots book nearly the same (one law written two
+/// ways) take the same resolution, not two a hair apart.
+double on_ladder(double r, bool up) {
+  const double decade = std::pow(10.0, std::floor(std::log10(r)));
+  constexpr double kRungs[] = {1.0, 1.25, 1.6, 2.0, 2.5, 3.2, 4.0, 5.0, 6.3, 8.0, 10.0};
+  double rung = decade;
+  for (const double k : kRungs) {
+    const double value = k * decade;
+    if (up ? value >= r * (1.0 - 1e-12) : value <= r * (1.0 + 1e-12)) {
+      rung = value;
+      if (up) break;
+    }
+  }
+  return rung;
+}
+
+/// The next resolution to try after `last`: the rung of the ladder (on_ladder) at or below the
+/// one that would bring its bound to kAutoTarget × the tolerance, as `scaling` has it, no finer than
+/// `finest`, and finer than the tolerance only as far as the work stays within
+/// kAimInteractions.
+double next_resolution(const Attempt& last, double tolerance, double finest, const Scaling& scaling) {
+  const double aimed = last.resolution * std::pow(kAutoTarget * tolerance / last.bound(), 1.0 / scaling.bound);
+  double r = std::max(finest, on_ladder(aimed, false));
+  if (r < tolerance) {
+    const double affordable = last.resolution * std::pow(last.interactions() / kAimInteractions, 1.0 / scaling.work);
+    r = std::min(tolerance, std::max(r, on_ladder(affordable, true)));
+  }
+  return std::min(r, last.resolution);
+}
+
+}  // namespace
+
+/// `solver.resolution: auto` (the default): the bound is aimed at the tolerance. A pilot at
+/// kPilotResolution × tolerance (at most kCoarsestAim, at least the tolerance) measures it; a
+/// scene whose pilot is within the tolerance keeps it (an exact scene's bound is 0: one run).
+/// Otherwise runs at the resolution the last bound points to (next_resolution) follow, at
+/// most kAutoChecks, until one is within the tolerance:
+/// finer than the tolerance where the scene books more than it (transmissions and reflections
+/// carry errors on and grow them), as far as kAimInteractions allows; never finer than the
+/// tolerance for a spray, whose droplets' error does not fall with it. Where the bound stops
+/// falling, or the next run would not be finer, the aim ends. Every run keeps its outputs in
+/// memory; the coarsest within the tolerance, else the finished one with the least bound, is
+/// handed to `recorder`. A pilot stopped
+/// by a budget of the scene's, or by an error, leaves the run to the tolerance, as without the
+/// aim; a pilot interrupted, or stopped at `recorder`'s request, is handed on as it is, and a
+/// later run so stopped ends the aim.
+RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
+  const double tolerance = scene.solver.tolerance;
+  std::vector<Attempt> runs;
+  if (scene.solver.auto_resolution) {
+    try {
+      const double pilot = std::max(tolerance, std::min(kPilotResolution * tolerance, kCoarsestAim));
+      runs.push_back(attempt(scene, pilot, scene.solver.max_interactions, recorder));
+    } catch (const std::exception&) {
+      runs.clear();  // the run at the tolerance meets the problem and reports it
+    }
+  }
+  if (runs.empty() || (!runs.front().finished() && !recorder.stop_asked())) {
+    Scene at_tolerance = scene;
+    at_tolerance.solver.auto_resolution = false;
+    RunResult result = characteristics::Tracker(at_tolerance, recorder).run();
+    recorder.complete(result, scene.t_end);
+    return result;
+  }
+  const double pilot_bound = runs.front().bound();
+  // A pilot that left droplets is resolved no finer than the tolerance until a run at it shows
+  // they are no spray (a spray coarsens the resolution it is given: a pilot as coarse as
+  // kCoarsestAim cannot show it).
+  double finest = runs.front().spray() || runs.front().droplets() ? tolerance : kFinestResolution * tolerance;
+  Scaling scaling;
+  while (runs.size() <= static_cast<std::size_t>(kAutoChecks) && runs.back().bound() > tolerance &&
+         !recorder.stop_asked()) {
+    const Attempt& last = runs.back();
+    const double r = next_resolution(last, tolerance, finest, scaling);
+    if (!(r < last.resolution / 1.05)) break;
+    Attempt next;
+    try {
+      next = attempt(scene, r, r < tolerance ? kAimInteractions : scene.solver.max_interactions, recorder);
+    } catch (const std::exception&) {
+      break;  // a finer run that meets a problem the coarser ones did not: keep what they give
+    }
+    scaling.measure(last.resolution, last.interactions(), last.bound(), r, next.interactions(), next.bound());
+    // The same run again (a fan's steps at their widest, 0.02, at both resolutions): no sign
+    // the bound stopped following the resolution, which is not yet finer where it counts.
+    const bool same = next.finished() && next.result.stats.interactions == last.result.stats.interactions &&
+                      next.bound() == last.bound();
+    const bool falls =
+        same || (next.finished() && next.bound() < last.bound() * std::pow(r / last.resolution, kLeastFall));
+    const bool spray = next.spray();  // what a finer resolution buys a spray, it coarsens away
+    if (r <= tolerance) finest = kFinestResolution * tolerance;
+    runs.push_back(std::move(next));
+    if (!falls || spray || runs.back().bound() <= tolerance) break;
+  }
+  // The coarsest run within the tolerance, else the one with the least bound.
+  std::size_t chosen = 0;
+  double time = 0.0;
+  const auto within = [&](const Attempt& a) { return a.finished() && a.bound() <= tolerance; };
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    time += runs[k].result.stats.wall_time_s;
+    const Attempt &run = runs[k], &so_far = runs[chosen];
+    if (within(so_far)) continue;
+    if (within(run) || (run.finished() && run.bound() < so_far.bound())) chosen = k;
+  }
+  Attempt& best = runs[chosen];
+  replay(best.result, recorder);
+  RunResult result = std::move(best.result);
+  result.solver_numbers.emplace_back("resolution", best.resolution);
+  result.solver_numbers.emplace_back("pilot_error_bound", pilot_bound);
+  result.solver_numbers.emplace_back("resolution_runs", static_cast<double>(runs.size()));
+  result.stats.wall_time_s = time;
+  recorder.complete(result, scene.t_end);
+  return result;
+}
+
+RunResult solve_characteristics(const Scene& scene) {
+  MemoryRecorder recorder;
+  return solve_characteristics(scene, recorder);
+}
+
+}  // namespace rigidity
