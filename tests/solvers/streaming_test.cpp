@@ -220,6 +220,29 @@ TEST_F(Streaming, EventsCsvJoinsTheBodiesOfAnEvent) {
   EXPECT_EQ(split(rows[1])[3], "flyer;target");
 }
 
+// `resolution: auto` keeps each of its runs in memory and hands the one it chose to the
+// recorder: the files are those a run at that resolution streams as it goes, fronts, probes,
+// snapshots and events alike.
+TEST_F(Streaming, AnAimedRunWritesWhatARunAtItsResolutionWrites) {
+  const Scene aimed_scene = load_scene_string(
+      kCascade, "<test>", {"solver.tolerance=1e-4", "solver.max_interactions=100000000", "time.end=6"});
+  ASSERT_TRUE(aimed_scene.solver.auto_resolution);
+  const RunResult aimed = run_streaming(aimed_scene, "aimed");
+  ASSERT_EQ(aimed.status, "ok");
+  ASSERT_GE(aimed.solver_number("resolution_runs"), 2.0) << "one run: nothing was kept in memory";
+  Scene fixed_scene = aimed_scene;
+  fixed_scene.solver.auto_resolution = false;
+  fixed_scene.solver.resolution = aimed.solver_number("resolution");
+  const RunResult fixed = run_streaming(fixed_scene, "fixed");
+  EXPECT_EQ(aimed.solver_number("error_bound"), fixed.solver_number("error_bound"));
+  EXPECT_EQ(aimed.event_counts, fixed.event_counts);
+  for (const char* name : {"fronts.csv", "probes.csv", "snapshots.csv", "events.csv"}) {
+    const std::string a = read_file(base_ / "aimed" / name), b = read_file(base_ / "fixed" / name);
+    EXPECT_GT(lines_of(a).size(), 1u) << name;
+    EXPECT_EQ(a, b) << name;
+  }
+}
+
 // ---- a budget stops the run cleanly ---------------------------------------------------------
 
 TEST_F(Streaming, ABudgetStopsTheRunWithTheOutputsUpToTheTimeReached) {
