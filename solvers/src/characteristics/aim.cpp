@@ -63,7 +63,27 @@ struct Attempt {
   [[nodiscard]] bool droplets() const { return result.solver_number("droplets") > 0.0; }
   /// A spray coarsened the resolution: its droplets' error does not fall with it.
   [[nodiscard]] bool spray() const { return result.solver_number("wave_resolution") > resolution; }
+  /// Frees what it recorded: a run that will not be chosen keeps only its numbers.
+  void drop_outputs() {
+    std::vector<FrontSegment>().swap(result.fronts);
+    std::vector<ProbeSample>().swap(result.probes);
+    std::vector<SnapshotSample>().swap(result.snapshots);
+    std::vector<RunEvent>().swap(result.events);
+  }
 };
+
+/// The run to hand on: the coarsest within the tolerance, else the finished one with the least
+/// bound (the first, the pilot, if none finished).
+std::size_t choose(const std::vector<Attempt>& runs, double tolerance) {
+  std::size_t chosen = 0;
+  const auto within = [&](const Attempt& a) { return a.finished() && a.bound() <= tolerance; };
+  for (std::size_t k = 1; k < runs.size(); ++k) {
+    const Attempt &run = runs[k], &so_far = runs[chosen];
+    if (within(so_far)) break;  // the runs grow finer
+    if (within(run) || (run.finished() && run.bound() < so_far.bound())) chosen = k;
+  }
+  return chosen;
+}
 
 Attempt attempt(const Scene& scene, double resolution, long max_interactions, RunRecorder& outer) {
   Scene s = scene;
@@ -136,12 +156,11 @@ double next_resolution(const Attempt& last, double tolerance, double finest, con
 /// finer than the tolerance where the scene books more than it (transmissions and reflections
 /// carry errors on and grow them), as far as kAimInteractions allows; never finer than the
 /// tolerance for a spray, whose droplets' error does not fall with it. Where the bound stops
-/// falling, or the next run would not be finer, the aim ends. Every run keeps its outputs in
-/// memory; the coarsest within the tolerance, else the finished one with the least bound, is
-/// handed to `recorder`. A pilot stopped
-/// by a budget of the scene's, or by an error, leaves the run to the tolerance, as without the
-/// aim; a pilot interrupted, or stopped at `recorder`'s request, is handed on as it is, and a
-/// later run so stopped ends the aim.
+/// falling, or the next run would not be finer, the aim ends. Each run records into memory,
+/// and keeps its outputs while it is the one to choose (choose); that one is handed to
+/// `recorder`. A pilot stopped by a budget of the scene's, or by an error, leaves the run to
+/// the tolerance, as without the aim; a pilot interrupted, or stopped at `recorder`'s request, is handed on as it is,
+/// and a later run so stopped ends the aim.
 RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
   const double tolerance = scene.solver.tolerance;
   std::vector<Attempt> runs;
@@ -187,19 +206,14 @@ RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
     const bool spray = next.spray();  // what a finer resolution buys a spray, it coarsens away
     if (r <= tolerance) finest = kFinestResolution * tolerance;
     runs.push_back(std::move(next));
+    const std::size_t chosen = choose(runs, tolerance);
+    for (std::size_t k = 0; k < runs.size(); ++k)
+      if (k != chosen) runs[k].drop_outputs();
     if (!falls || spray || runs.back().bound() <= tolerance) break;
   }
-  // The coarsest run within the tolerance, else the one with the least bound.
-  std::size_t chosen = 0;
   double time = 0.0;
-  const auto within = [&](const Attempt& a) { return a.finished() && a.bound() <= tolerance; };
-  for (std::size_t k = 0; k < runs.size(); ++k) {
-    time += runs[k].result.stats.wall_time_s;
-    const Attempt &run = runs[k], &so_far = runs[chosen];
-    if (within(so_far)) continue;
-    if (within(run) || (run.finished() && run.bound() < so_far.bound())) chosen = k;
-  }
-  Attempt& best = runs[chosen];
+  for (const Attempt& run : runs) time += run.result.stats.wall_time_s;
+  Attempt& best = runs[choose(runs, tolerance)];
   replay(best.result, recorder);
   RunResult result = std::move(best.result);
   result.solver_numbers.emplace_back("resolution", best.resolution);
