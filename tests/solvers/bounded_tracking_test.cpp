@@ -691,7 +691,8 @@ TEST(Spray, ARigidFluidSprayFinishesWithFewPiecesConsistentGeometryAndClosedBook
 
 TEST(Spray, TheAimResolvesASprayNoFinerThanTheTolerance) {
   // The spray's droplets book an error no resolution takes back: `resolution: auto` sees them in
-  // its pilot and resolves no finer than the tolerance, though its bound stays above it.
+  // its pilot, resolves to the tolerance first, finds the bound no longer falls there as the
+  // resolution would have it, and goes no finer, though its bound stays above the tolerance.
   const SceneRun aimed = run(kSpray, 1e-3, 20.0, "auto");
   ASSERT_EQ(aimed.result.status, "ok");
   EXPECT_GT(solver_number(aimed.result, "error_bound"), 1e-3) << "a spray the aim cannot meet: the test checks nothing";

@@ -154,13 +154,14 @@ double next_resolution(const Attempt& last, double tolerance, double finest, con
 /// Otherwise runs at the resolution the last bound points to (next_resolution) follow, at
 /// most kAutoChecks, until one is within the tolerance:
 /// finer than the tolerance where the scene books more than it (transmissions and reflections
-/// carry errors on and grow them), as far as kAimInteractions allows; never finer than the
-/// tolerance for a spray, whose droplets' error does not fall with it. Where the bound stops
-/// falling, or the next run would not be finer, the aim ends. Each run records into memory,
+/// carry errors on and grow them), as far as kAimInteractions allows; where the pilot left
+/// droplets, only once a run at the tolerance has shown the bound still falls (a spray's
+/// droplets' error does not). Where the bound stops falling, or the next run would not be
+/// finer, the aim ends. Each run records into memory,
 /// and keeps its outputs while it is the one to choose (choose); that one is handed to
 /// `recorder`. A pilot stopped by a budget of the scene's, or by an error, leaves the run to
-/// the tolerance, as without the aim; a pilot interrupted, or stopped at `recorder`'s request, is handed on as it is,
-/// and a later run so stopped ends the aim.
+/// the tolerance, as without the aim; a pilot interrupted, or stopped at `recorder`'s request,
+/// is handed on as it is, and a later run so stopped ends the aim.
 RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
   const double tolerance = scene.solver.tolerance;
   std::vector<Attempt> runs;
@@ -180,9 +181,9 @@ RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
     return result;
   }
   const double pilot_bound = runs.front().bound();
-  // A pilot that left droplets is resolved no finer than the tolerance until a run at it shows
-  // they are no spray (a spray coarsens the resolution it is given: a pilot as coarse as
-  // kCoarsestAim cannot show it).
+  // A pilot that left droplets (a spray, maybe) is resolved no finer than the tolerance until a
+  // run at it shows its bound still falls with the resolution: a spray's droplets book an error
+  // that does not, and a pilot as coarse as kCoarsestAim is coarser than any a spray takes.
   double finest = runs.front().spray() || runs.front().droplets() ? tolerance : kFinestResolution * tolerance;
   Scaling scaling;
   while (runs.size() <= static_cast<std::size_t>(kAutoChecks) && runs.back().bound() > tolerance &&
@@ -203,13 +204,12 @@ RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
                       next.bound() == last.bound();
     const bool falls =
         same || (next.finished() && next.bound() < last.bound() * std::pow(r / last.resolution, kLeastFall));
-    const bool spray = next.spray();  // what a finer resolution buys a spray, it coarsens away
     if (r <= tolerance) finest = kFinestResolution * tolerance;
     runs.push_back(std::move(next));
     const std::size_t chosen = choose(runs, tolerance);
     for (std::size_t k = 0; k < runs.size(); ++k)
       if (k != chosen) runs[k].drop_outputs();
-    if (!falls || spray || runs.back().bound() <= tolerance) break;
+    if (!falls || runs.back().bound() <= tolerance) break;
   }
   double time = 0.0;
   for (const Attempt& run : runs) time += run.result.stats.wall_time_s;
