@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "rigidity/number_text.hpp"
 #include "rigidity/run_recorder.hpp"
 #include "rigidity/solvers/characteristics.hpp"
 #include "tracker.hpp"
@@ -119,11 +120,16 @@ void replay(RunResult& chosen, RunRecorder& recorder) {
 /// come from it, so that two scenes whose pilots book nearly the same (one law written two
 /// ways) take the same resolution, not two a hair apart.
 double on_ladder(double r, bool up) {
-  const double decade = std::pow(10.0, std::floor(std::log10(r)));
-  constexpr double kRungs[] = {1.0, 1.25, 1.6, 2.0, 2.5, 3.2, 4.0, 5.0, 6.3, 8.0, 10.0};
-  double rung = decade;
+  // Each rung as hundredths × a power of ten, divided by an exact power of ten where the
+  // exponent is negative, so that 1e-6 prints as 1e-06, not 1.0000000000000002e-06.
+  const int exponent = static_cast<int>(std::floor(std::log10(r))) - 2;
+  const auto at = [exponent](double hundredths) {
+    return exponent < 0 ? hundredths / std::pow(10.0, -exponent) : hundredths * std::pow(10.0, exponent);
+  };
+  constexpr double kRungs[] = {100, 125, 160, 200, 250, 320, 400, 500, 630, 800, 1000};
+  double rung = at(kRungs[0]);
   for (const double k : kRungs) {
-    const double value = k * decade;
+    const double value = at(k);
     if (up ? value >= r * (1.0 - 1e-12) : value <= r * (1.0 + 1e-12)) {
       rung = value;
       if (up) break;
@@ -133,15 +139,18 @@ double on_ladder(double r, bool up) {
 }
 
 /// The next resolution to try after `last`: the rung of the ladder (on_ladder) at or below the
-/// one that would bring its bound to kAutoTarget × the tolerance, as `scaling` has it, no finer than
-/// `finest`, and finer than the tolerance only as far as the work stays within
-/// kAimInteractions.
-double next_resolution(const Attempt& last, double tolerance, double finest, const Scaling& scaling) {
+/// one that would bring its bound to kAutoTarget × the tolerance, as `scaling` has it, no finer
+/// than `finest`, and finer than the tolerance only as far as the work stays within
+/// kAimInteractions (`by_work`: that held it back).
+double next_resolution(const Attempt& last, double tolerance, double finest, const Scaling& scaling, bool& by_work) {
   const double aimed = last.resolution * std::pow(kAutoTarget * tolerance / last.bound(), 1.0 / scaling.bound);
   double r = std::max(finest, on_ladder(aimed, false));
+  by_work = false;
   if (r < tolerance) {
-    const double affordable = last.resolution * std::pow(last.interactions() / kAimInteractions, 1.0 / scaling.work);
-    r = std::min(tolerance, std::max(r, on_ladder(affordable, true)));
+    const double affordable =
+        on_ladder(last.resolution * std::pow(last.interactions() / kAimInteractions, 1.0 / scaling.work), true);
+    by_work = affordable > r;
+    r = std::min(tolerance, std::max(r, affordable));
   }
   return std::min(r, last.resolution);
 }
@@ -167,7 +176,7 @@ RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
   std::vector<Attempt> runs;
   if (scene.solver.auto_resolution) {
     try {
-      const double pilot = std::max(tolerance, std::min(kPilotResolution * tolerance, kCoarsestAim));
+      const double pilot = std::max(tolerance, on_ladder(std::min(kPilotResolution * tolerance, kCoarsestAim), false));
       runs.push_back(attempt(scene, pilot, scene.solver.max_interactions, recorder));
     } catch (const std::exception&) {
       runs.clear();  // the run at the tolerance meets the problem and reports it
@@ -184,19 +193,29 @@ RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
   // A pilot that left droplets (a spray, maybe) is resolved no finer than the tolerance until a
   // run at it shows its bound still falls with the resolution: a spray's droplets book an error
   // that does not, and a pilot as coarse as kCoarsestAim is coarser than any a spray takes.
-  double finest = runs.front().spray() || runs.front().droplets() ? tolerance : kFinestResolution * tolerance;
+  double finest =
+      runs.front().spray() || runs.front().droplets() ? tolerance : on_ladder(kFinestResolution * tolerance, true);
   Scaling scaling;
+  std::string short_of;  // why the aim ended with the bound above the tolerance
   while (runs.size() <= static_cast<std::size_t>(kAutoChecks) && runs.back().bound() > tolerance &&
          !recorder.stop_asked()) {
     const Attempt& last = runs.back();
-    const double r = next_resolution(last, tolerance, finest, scaling);
+    bool by_work = false;
+    const double r = next_resolution(last, tolerance, finest, scaling, by_work);
+    short_of = by_work ? "a finer resolution would take more than the aim's " + std::to_string(kAimInteractions) +
+                             " interactions a run"
+                       : "no finer resolution is allowed (" + shortest(kFinestResolution) + " × the tolerance)";
     if (!(r < last.resolution / 1.05)) break;
     Attempt next;
     try {
       next = attempt(scene, r, r < tolerance ? kAimInteractions : scene.solver.max_interactions, recorder);
     } catch (const std::exception&) {
-      break;  // a finer run that meets a problem the coarser ones did not: keep what they give
+      short_of = "a run at " + shortest(r) + " met a problem the coarser ones did not";
+      break;  // keep what they give
     }
+    short_of = !next.finished() && r < tolerance ? "a run at " + shortest(r) + " took more than the aim's " +
+                                                       std::to_string(kAimInteractions) + " interactions"
+                                                 : "the bound stopped falling with the resolution";
     scaling.measure(last.resolution, last.interactions(), last.bound(), r, next.interactions(), next.bound());
     // The same run again (a fan's steps at their widest, 0.02, at both resolutions): no sign
     // the bound stopped following the resolution, which is not yet finer where it counts.
@@ -204,12 +223,13 @@ RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
                       next.bound() == last.bound();
     const bool falls =
         same || (next.finished() && next.bound() < last.bound() * std::pow(r / last.resolution, kLeastFall));
-    if (r <= tolerance) finest = kFinestResolution * tolerance;
+    if (r <= tolerance) finest = on_ladder(kFinestResolution * tolerance, true);
     runs.push_back(std::move(next));
     const std::size_t chosen = choose(runs, tolerance);
     for (std::size_t k = 0; k < runs.size(); ++k)
       if (k != chosen) runs[k].drop_outputs();
     if (!falls || runs.back().bound() <= tolerance) break;
+    short_of = "the aim makes at most " + std::to_string(kAutoChecks + 1) + " runs";
   }
   double time = 0.0;
   for (const Attempt& run : runs) time += run.result.stats.wall_time_s;
@@ -220,6 +240,9 @@ RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
   result.solver_numbers.emplace_back("pilot_error_bound", pilot_bound);
   result.solver_numbers.emplace_back("resolution_runs", static_cast<double>(runs.size()));
   result.stats.wall_time_s = time;
+  if (result.solver_number("error_bound") > tolerance && !short_of.empty() && scene.solver.tolerance_given)
+    result.warnings.push_back("solver.resolution: auto resolved the waves at " + shortest(best.resolution) + " (" +
+                              std::to_string(runs.size()) + " runs): " + short_of);
   recorder.complete(result, scene.t_end);
   return result;
 }
