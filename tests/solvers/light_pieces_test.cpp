@@ -321,7 +321,7 @@ bodies:
 boundaries:
   left: {type: piston, bonded: true, interpolation: linear, table: [[0, 0], [4, 0.4]]}
   right: {type: free}
-solver: {method: characteristics, tolerance: 1e-5}
+solver: {method: characteristics, tolerance: 1e-5, resolution: tolerance}
 time: {end: 2.6}
 outputs: {snapshots: [{times: [2.6], quantities: [v, s, x], samples: 2001}]}
 )",
