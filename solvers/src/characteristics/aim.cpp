@@ -46,10 +46,10 @@ struct Scaling {
   double work = 1.5, bound = 1.0;
   /// Measured between runs a (coarser) and b, where both did enough to tell.
   void measure(double r_a, double interactions_a, double bound_a, double r_b, double interactions_b, double bound_b) {
-    const double decades = std::log(r_a / r_b);
+    const double refinement = std::log(r_a / r_b);
     if (interactions_a > 1e3 && interactions_b > 1e3)
-      work = std::clamp(std::log(interactions_b / interactions_a) / decades, 1.2, 2.5);
-    if (bound_a > 0.0 && bound_b > 0.0) bound = std::clamp(std::log(bound_a / bound_b) / decades, 0.5, 2.0);
+      work = std::clamp(std::log(interactions_b / interactions_a) / refinement, 1.2, 2.5);
+    if (bound_a > 0.0 && bound_b > 0.0) bound = std::clamp(std::log(bound_a / bound_b) / refinement, 0.5, 2.0);
   }
 };
 
