@@ -54,10 +54,7 @@ void RunRecorder::on_progress(ProgressCallback callback, double delay_s, double 
 }
 
 bool RunRecorder::poll_slowly(double t, long fronts_alive, long interactions) {
-  if (outer_ != nullptr && outer_->stop_pending_ && !stop_pending_) {
-    stop_pending_ = true;
-    stop_reason_ = outer_->stop_reason_;
-  }
+  take_outer_stop();
   if (stop_pending_) {
     stop_pending_ = false;
     status_ = RunStatus::stopped;
@@ -96,6 +93,7 @@ bool RunRecorder::poll_slowly(double t, long fronts_alive, long interactions) {
     return false;
   last_report_ = now;
   reporter.progress_(RunProgress{t, fronts_alive, interactions, elapsed});
+  take_outer_stop();  // the outer's callback may have asked for it: the next poll() stops
   return false;
 }
 

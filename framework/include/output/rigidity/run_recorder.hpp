@@ -95,8 +95,7 @@ class RunRecorder {
   /// complete up to t. True: the run must stop; the solver closes its books at t
   /// (= t_reached()) and returns. Cheap enough to call at every interaction.
   [[nodiscard]] bool poll(double t, long fronts_alive, long interactions) {
-    if (stop_pending_ || detail::interrupt_flag.load(std::memory_order_relaxed) || ++polls_ >= next_check_ ||
-        (outer_ != nullptr && outer_->stop_pending_)) [[unlikely]]
+    if (stop_pending_ || detail::interrupt_flag.load(std::memory_order_relaxed) || ++polls_ >= next_check_) [[unlikely]]
       return poll_slowly(t, fronts_alive, interactions);
     return false;
   }
@@ -108,7 +107,7 @@ class RunRecorder {
   /// This recorder keeps a run for `outer` (`solver.resolution: auto` keeps each run it makes
   /// in memory until it has chosen one): its polls drive outer's progress callback (a progress
   /// line, Python's signal handlers) when it has none of its own, and a stop asked of outer
-  /// stops its run too.
+  /// (by that callback, or before the run) stops its run too.
   void relay_to(RunRecorder& outer) { outer_ = &outer; }
 
   /// Once poll() has returned true: why, and the time the run reached.
@@ -140,6 +139,13 @@ class RunRecorder {
  private:
   using Clock = std::chrono::steady_clock;
   bool poll_slowly(double t, long fronts_alive, long interactions);
+  /// A stop asked of the outer recorder (see relay_to) becomes this one's.
+  void take_outer_stop() {
+    if (outer_ != nullptr && outer_->stop_pending_ && !stop_pending_) {
+      stop_pending_ = true;
+      stop_reason_ = outer_->stop_reason_;
+    }
+  }
 
   bool stop_pending_ = false;
   RunRecorder* outer_ = nullptr;  ///< see relay_to
