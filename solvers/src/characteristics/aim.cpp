@@ -97,16 +97,14 @@ Attempt attempt(const Scene& scene, double resolution, long max_interactions, Ru
   return a;
 }
 
-/// Hands what `chosen` recorded in memory to `recorder`, as if it had run there.
-void replay(RunResult& chosen, RunRecorder& recorder) {
+/// Hands what `run` recorded in memory to `recorder`, as if it had run there.
+void replay(Attempt& run, RunRecorder& recorder) {
+  RunResult& chosen = run.result;
   for (const FrontSegment& f : chosen.fronts) recorder.front(f);
   for (const ProbeSample& p : chosen.probes) recorder.probe(p);
   for (const SnapshotSample& s : chosen.snapshots) recorder.snapshot(s);
   for (const RunEvent& e : chosen.events) recorder.event(e);
-  chosen.fronts.clear();
-  chosen.probes.clear();
-  chosen.snapshots.clear();
-  chosen.events.clear();
+  run.drop_outputs();
   if (chosen.status == "inadmissible") {
     recorder.halt(chosen.t_reached, chosen.stop_reason);
   } else if (chosen.status != "ok") {  // stopped by a budget, or interrupted
@@ -202,9 +200,13 @@ RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
     const Attempt& last = runs.back();
     bool by_work = false;
     const double r = next_resolution(last, tolerance, finest, scaling, by_work);
-    short_of = by_work ? "a finer resolution would take more than the aim's " + std::to_string(kAimInteractions) +
-                             " interactions a run"
-                       : "no finer resolution is allowed (" + shortest(kFinestResolution) + " × the tolerance)";
+    short_of =
+        by_work ? "a finer resolution would take more than the aim's " + std::to_string(kAimInteractions) +
+                      " interactions a run"
+        : finest < tolerance
+            ? "no finer resolution is allowed (" + shortest(kFinestResolution) + " × the tolerance)"
+            : "the pilot, at the tolerance, left droplets: a spray's error does not fall with the resolution, so "
+              "none finer is tried";
     if (!(r < last.resolution / 1.05)) break;
     Attempt next;
     try {
@@ -234,7 +236,7 @@ RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
   double time = 0.0;
   for (const Attempt& run : runs) time += run.result.stats.wall_time_s;
   Attempt& best = runs[choose(runs, tolerance)];
-  replay(best.result, recorder);
+  replay(best, recorder);
   RunResult result = std::move(best.result);
   result.solver_numbers.emplace_back("resolution", best.resolution);
   result.solver_numbers.emplace_back("pilot_error_bound", pilot_bound);
