@@ -527,6 +527,33 @@ TEST(ErrorBound, TheAimResolvesBelowTheToleranceUntilTheBoundMeetsIt) {
   EXPECT_LT(error, fixed_error);
 }
 
+TEST(ErrorBound, TheAimResolvesAsFinelyAsItsBudgetAffords) {
+  // The bouncing gas bar at 1e-6 to t = 10 takes about 8e5 interactions resolved to the
+  // tolerance, its pilot at 1e-5 about 7.5e4. With solver.budget = 1e5 the pilot may spend a
+  // tenth of it: stopped, it is made again at 1e-4; the aim then resolves as finely as what is
+  // left affords, spends no more than the budget, and says the budget held it.
+  std::string yaml = kBouncingGasLong + "solver: {tolerance: 1e-6, budget: 100000}\ntime: {end: 10}\n";
+  const Scene scene = load_scene_string(yaml, "<test>");
+  const RunResult aimed = solve(scene);
+  EXPECT_EQ(aimed.status, "ok");
+  const double resolution = solver_number(aimed, "resolution");
+  EXPECT_GT(resolution, 1e-5) << "finer than the budget affords";
+  EXPECT_LT(resolution, 1e-4) << "no finer run after the pilot";
+  EXPECT_EQ(solver_number(aimed, "resolution_runs"), 3.0);
+  EXPECT_LE(aimed.stats.interactions, scene.solver.budget);
+  // The pilot the aim kept is the one made again at 1e-4: its bound is a run's at 1e-4.
+  const SceneRun pilot = run(kBouncingGasLong, 1e-4, 10.0);
+  EXPECT_EQ(solver_number(aimed, "pilot_error_bound"), solver_number(pilot.result, "error_bound"));
+  // The run handed on is the run at its resolution, outputs and bound alike.
+  const SceneRun at_resolution = run(kBouncingGasLong, resolution, 10.0);
+  EXPECT_EQ(solver_number(aimed, "error_bound"), solver_number(at_resolution.result, "error_bound"));
+  EXPECT_EQ(aimed.stats.interactions, at_resolution.result.stats.interactions);
+  bool said = false;
+  for (const std::string& w : aimed.warnings)
+    said = said || w.find("would take more than solver.budget = 100000 interactions") != std::string::npos;
+  EXPECT_TRUE(said) << "the warning does not name the budget";
+}
+
 TEST(ErrorBound, ABoundAboveTheToleranceSaysWhatHoldsItUp) {
   // The three bars after a short push of the piston, to t = 15 at tolerance 1e-2: their
   // waves scatter at both contacts until the merges that hold the fronts to the cap book a

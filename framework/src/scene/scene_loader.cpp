@@ -389,6 +389,7 @@ class SceneBuilder {
     out.tolerance = solver["tolerance"].number;
     out.tolerance_given = solver["tolerance"].given;
     out.auto_resolution = solver["resolution"].word == "auto";
+    out.budget = static_cast<long>(solver["budget"].number);
     out.max_fronts = static_cast<long>(solver["max_fronts"].number);
     out.max_interactions = static_cast<long>(solver["max_interactions"].number);
     out.cells = static_cast<int>(solver["cells"].number);

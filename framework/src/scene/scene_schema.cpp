@@ -311,6 +311,14 @@ Key solver_key() {
                       "of extra work; the run with the least bound is kept), or `tolerance`: to the tolerance itself, "
                       "one run")
               .defaults_to(std::string("auto")),
+          Key::integer("budget",
+                       "characteristics with `resolution: auto`: the most interactions the aim spends over all its "
+                       "runs (the default is a few seconds of solving); where resolving the waves to the tolerance "
+                       "would take more, they are resolved as finely as it affords and a warning says so (a run at "
+                       "the coarsest resolution the aim takes, 0.01, is stopped only by max_interactions)")
+              .at_least(1.0)
+              .at_most(1.0e15)
+              .defaults_to(1.0e7),
           Key::integer("max_fronts",
                        "characteristics: most fronts alive at once, about 210 bytes each (the default is about "
                        "210 MB); beyond it the run stops cleanly with status `stopped` and the outputs up to then")

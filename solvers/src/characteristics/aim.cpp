@@ -30,6 +30,9 @@ constexpr double kLeastFall = 0.3;
 /// up fails beyond it (random Hooke and rigid bars pushed into a wall: error 9.2e-3 against a
 /// bound of 5.6e-3 at 0.1), so a tolerance coarser than a tenth of it has a pilot no coarser.
 constexpr double kCoarsestAim = 1e-2;
+/// A pilot may spend this fraction of `solver.budget`: a scene whose pilot takes more could not
+/// afford a run at the tolerance (10^1.2 to 10^2.5 times the pilot's work) within it.
+constexpr double kPilotShare = 10.0;
 /// Runs after the pilot, at most.
 constexpr int kAutoChecks = 3;
 /// The finest resolution a run may take, as a fraction of the tolerance.
@@ -60,6 +63,10 @@ struct Attempt {
   [[nodiscard]] bool finished() const { return result.status == "ok" || result.status == "inadmissible"; }
   [[nodiscard]] double bound() const { return result.solver_number("error_bound"); }
   [[nodiscard]] double interactions() const { return static_cast<double>(std::max(1L, result.stats.interactions)); }
+  /// Stopped at `cap` interactions, a budget the aim set below the scene's own.
+  [[nodiscard]] bool stopped_by(long cap, const Scene& scene) const {
+    return result.status == "stopped" && cap < scene.solver.max_interactions && result.stats.interactions >= cap;
+  }
   /// Droplets were left: the scene may be a spray.
   [[nodiscard]] bool droplets() const { return result.solver_number("droplets") > 0.0; }
   /// A spray coarsened the resolution: its droplets' error does not fall with it.
@@ -136,19 +143,30 @@ double on_ladder(double r, bool up) {
   return rung;
 }
 
+/// Why the next run is no finer than next_resolution would have it.
+enum class HeldBy { nothing, run_work, budget };
+
 /// The next resolution to try after `last`: the rung of the ladder (on_ladder) at or below the
 /// one that would bring its bound to kAutoTarget × the tolerance, as `scaling` has it, no finer
-/// than `finest`, and finer than the tolerance only as far as the work stays within
-/// kAimInteractions (`by_work`: that held it back).
-double next_resolution(const Attempt& last, double tolerance, double finest, const Scaling& scaling, bool& by_work) {
+/// than `finest`, finer than the tolerance only as far as the work stays within
+/// kAimInteractions, and no finer than what is `left` of the budget affords (`held`: what held
+/// it back).
+double next_resolution(const Attempt& last, double tolerance, double finest, const Scaling& scaling, double left,
+                       HeldBy& held) {
   const double aimed = last.resolution * std::pow(kAutoTarget * tolerance / last.bound(), 1.0 / scaling.bound);
   double r = std::max(finest, on_ladder(aimed, false));
-  by_work = false;
-  if (r < tolerance) {
-    const double affordable =
-        on_ladder(last.resolution * std::pow(last.interactions() / kAimInteractions, 1.0 / scaling.work), true);
-    by_work = affordable > r;
-    r = std::min(tolerance, std::max(r, affordable));
+  // The coarsest rung whose work, as `scaling` has it, fits within `work`.
+  const auto affords = [&](double work) {
+    return on_ladder(last.resolution * std::pow(last.interactions() / std::max(work, 1.0), 1.0 / scaling.work), true);
+  };
+  held = HeldBy::nothing;
+  if (r < tolerance && affords(kAimInteractions) > r) {
+    held = HeldBy::run_work;
+    r = std::min(tolerance, affords(kAimInteractions));
+  }
+  if (affords(left) > r) {
+    held = HeldBy::budget;
+    r = affords(left);
   }
   return std::min(r, last.resolution);
 }
@@ -158,13 +176,16 @@ double next_resolution(const Attempt& last, double tolerance, double finest, con
 /// `solver.resolution: auto` (the default): the bound is aimed at the tolerance. A pilot at
 /// kPilotResolution × tolerance (at most kCoarsestAim, at least the tolerance) measures it; a
 /// scene whose pilot is within the tolerance keeps it (an exact scene's bound is 0: one run).
+/// A pilot that takes more than 1/kPilotShare of `solver.budget` is stopped and made again ten
+/// times more coarsely (at kCoarsestAim, only the scene's own budgets stop it).
 /// Otherwise runs at the resolution the last bound points to (next_resolution) follow, at
 /// most kAutoChecks, until one is within the tolerance:
 /// finer than the tolerance where the scene books more than it (transmissions and reflections
 /// carry errors on and grow them), as far as kAimInteractions allows; where the pilot left
 /// droplets, only once a run at the tolerance has shown the bound still falls (a spray's
-/// droplets' error does not). Where the bound stops falling, or the next run would not be
-/// finer, the aim ends. Each run records into memory,
+/// droplets' error does not); never finer than what is left of `solver.budget` affords, and
+/// each run is stopped where it would spend more. Where the bound stops falling, or the next
+/// run would not be finer, the aim ends. Each run records into memory,
 /// and keeps its outputs while it is the one to choose (choose); that one is handed to
 /// `recorder`. A pilot stopped by a budget of the scene's, or by an error, leaves the run to
 /// the tolerance, as without the aim; a pilot interrupted, or stopped at `recorder`'s request,
@@ -172,10 +193,28 @@ double next_resolution(const Attempt& last, double tolerance, double finest, con
 RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
   const double tolerance = scene.solver.tolerance;
   std::vector<Attempt> runs;
+  double left = static_cast<double>(scene.solver.budget);  // of the aim's budget
+  int made = 0;
+  double time = 0.0;
+  const auto spend = [&](const Attempt& a) {
+    left -= static_cast<double>(a.result.stats.interactions);
+    time += a.result.stats.wall_time_s;
+    ++made;
+  };
   if (scene.solver.auto_resolution) {
     try {
-      const double pilot = std::max(tolerance, on_ladder(std::min(kPilotResolution * tolerance, kCoarsestAim), false));
-      runs.push_back(attempt(scene, pilot, scene.solver.max_interactions, recorder));
+      double pilot = std::max(tolerance, on_ladder(std::min(kPilotResolution * tolerance, kCoarsestAim), false));
+      for (;;) {
+        const bool coarsest = pilot >= kCoarsestAim;
+        const long cap = coarsest ? scene.solver.max_interactions : std::max(1L, static_cast<long>(left / kPilotShare));
+        Attempt a = attempt(scene, pilot, cap, recorder);
+        spend(a);
+        if (coarsest || !a.stopped_by(cap, scene) || recorder.stop_asked()) {
+          runs.push_back(std::move(a));
+          break;
+        }
+        pilot = on_ladder(std::min(10.0 * pilot, kCoarsestAim), true);
+      }
     } catch (const std::exception&) {
       runs.clear();  // the run at the tolerance meets the problem and reports it
     }
@@ -194,30 +233,38 @@ RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
   double finest =
       runs.front().spray() || runs.front().droplets() ? tolerance : on_ladder(kFinestResolution * tolerance, true);
   Scaling scaling;
+  const std::string over_budget =
+      "a finer resolution would take more than solver.budget = " + std::to_string(scene.solver.budget) +
+      " interactions over the aim's runs";
   std::string short_of;  // why the aim ended with the bound above the tolerance
   while (runs.size() <= static_cast<std::size_t>(kAutoChecks) && runs.back().bound() > tolerance &&
          !recorder.stop_asked()) {
     const Attempt& last = runs.back();
-    bool by_work = false;
-    const double r = next_resolution(last, tolerance, finest, scaling, by_work);
+    HeldBy held = HeldBy::nothing;
+    const double r = next_resolution(last, tolerance, finest, scaling, left, held);
     short_of =
-        by_work ? "a finer resolution would take more than the aim's " + std::to_string(kAimInteractions) +
-                      " interactions a run"
+        held == HeldBy::budget     ? over_budget
+        : held == HeldBy::run_work ? "a finer resolution would take more than the aim's " +
+                                         std::to_string(kAimInteractions) + " interactions a run"
         : finest < tolerance
             ? "no finer resolution is allowed (" + shortest(kFinestResolution) + " × the tolerance)"
             : "the pilot, at the tolerance, left droplets: a spray's error does not fall with the resolution, so "
               "none finer is tried";
     if (!(r < last.resolution / 1.05)) break;
+    const long cap = std::max(
+        1L, std::min(static_cast<long>(left), r < tolerance ? kAimInteractions : scene.solver.max_interactions));
     Attempt next;
     try {
-      next = attempt(scene, r, r < tolerance ? kAimInteractions : scene.solver.max_interactions, recorder);
+      next = attempt(scene, r, cap, recorder);
     } catch (const std::exception&) {
       short_of = "a run at " + shortest(r) + " met a problem the coarser ones did not";
       break;  // keep what they give
     }
-    short_of = !next.finished() && r < tolerance ? "a run at " + shortest(r) + " took more than the aim's " +
-                                                       std::to_string(kAimInteractions) + " interactions"
-                                                 : "the bound stopped falling with the resolution";
+    spend(next);
+    short_of = !next.stopped_by(cap, scene) ? "the bound stopped falling with the resolution"
+               : cap == kAimInteractions    ? "a run at " + shortest(r) + " took more than the aim's " +
+                                               std::to_string(kAimInteractions) + " interactions"
+                                         : "a run at " + shortest(r) + " took more than what was left of solver.budget";
     scaling.measure(last.resolution, last.interactions(), last.bound(), r, next.interactions(), next.bound());
     // The same run again (a fan's steps at their widest, 0.02, at both resolutions): no sign
     // the bound stopped following the resolution, which is not yet finer where it counts.
@@ -233,18 +280,16 @@ RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
     if (!falls || runs.back().bound() <= tolerance) break;
     short_of = "the aim makes at most " + std::to_string(kAutoChecks + 1) + " runs";
   }
-  double time = 0.0;
-  for (const Attempt& run : runs) time += run.result.stats.wall_time_s;
   Attempt& best = runs[choose(runs, tolerance)];
   replay(best, recorder);
   RunResult result = std::move(best.result);
   result.solver_numbers.emplace_back("resolution", best.resolution);
   result.solver_numbers.emplace_back("pilot_error_bound", pilot_bound);
-  result.solver_numbers.emplace_back("resolution_runs", static_cast<double>(runs.size()));
+  result.solver_numbers.emplace_back("resolution_runs", static_cast<double>(made));
   result.stats.wall_time_s = time;
   if (result.solver_number("error_bound") > tolerance && !short_of.empty() && scene.solver.tolerance_given)
     result.warnings.push_back("solver.resolution: auto resolved the waves at " + shortest(best.resolution) + " (" +
-                              std::to_string(runs.size()) + " runs): " + short_of);
+                              std::to_string(made) + " runs): " + short_of);
   recorder.complete(result, scene.t_end);
   return result;
 }

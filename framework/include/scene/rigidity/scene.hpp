@@ -103,6 +103,9 @@ struct SolverDecl {
   /// the tolerance. `resolution: auto` sets it for each run it makes.
   double resolution = 0.0;
   [[nodiscard]] double wave_resolution() const { return resolution > 0.0 ? resolution : tolerance; }
+  /// characteristics, `resolution: auto`: the most interactions the aim spends over all its runs;
+  /// beyond what it affords, waves are resolved more coarsely than the tolerance.
+  long budget = 10000000;
   long max_fronts = 1000000;  ///< characteristics: most fronts alive at once; beyond, the run stops (status stopped)
   long max_interactions = 100000000;  ///< characteristics: most interactions of a run; beyond, the run stops
   int cells = 400;                    ///< finite volume
