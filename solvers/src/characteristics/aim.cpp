@@ -37,9 +37,6 @@ constexpr double kPilotShare = 10.0;
 constexpr int kAutoChecks = 3;
 /// The finest resolution a run may take, as a fraction of the tolerance.
 constexpr double kFinestResolution = 0.01;
-/// The most interactions a run finer than the tolerance may take (about a second of solving):
-/// a bound the tolerance itself cannot meet is bought down only as far as that.
-constexpr long kAimInteractions = 2'000'000;
 /// How the work and the bound follow the resolution r, until two runs have measured it:
 /// interactions ∝ r^-work (at least 1.2: 1 where fan steps cross, 2 where the cap on fronts holds them;
 /// measured 1.1 to 1.7 on random scenes from 1e-3 to 1e-5), bound ∝ r^bound (1 where fan steps,
@@ -143,32 +140,19 @@ double on_ladder(double r, bool up) {
   return rung;
 }
 
-/// Why the next run is no finer than next_resolution would have it.
-enum class HeldBy { nothing, run_work, budget };
-
 /// The next resolution to try after `last`: the rung of the ladder (on_ladder) at or below the
 /// one that would bring its bound to kAutoTarget × the tolerance, as `scaling` has it, no finer
-/// than `finest`, finer than the tolerance only as far as the work stays within
-/// kAimInteractions, and no finer than what is `left` of the budget affords (`held`: what held
+/// than `finest`, and no finer than what is `left` of the budget affords (`by_budget`: that held
 /// it back).
 double next_resolution(const Attempt& last, double tolerance, double finest, const Scaling& scaling, double left,
-                       HeldBy& held) {
+                       bool& by_budget) {
   const double aimed = last.resolution * std::pow(kAutoTarget * tolerance / last.bound(), 1.0 / scaling.bound);
-  double r = std::max(finest, on_ladder(aimed, false));
-  // The coarsest rung whose work, as `scaling` has it, fits within `work`.
-  const auto affords = [&](double work) {
-    return on_ladder(last.resolution * std::pow(last.interactions() / std::max(work, 1.0), 1.0 / scaling.work), true);
-  };
-  held = HeldBy::nothing;
-  if (r < tolerance && affords(kAimInteractions) > r) {
-    held = HeldBy::run_work;
-    r = std::min(tolerance, affords(kAimInteractions));
-  }
-  if (affords(left) > r) {
-    held = HeldBy::budget;
-    r = affords(left);
-  }
-  return std::min(r, last.resolution);
+  const double r = std::max(finest, on_ladder(aimed, false));
+  // The coarsest rung whose work, as `scaling` has it, fits within what is left.
+  const double affordable =
+      on_ladder(last.resolution * std::pow(last.interactions() / std::max(left, 1.0), 1.0 / scaling.work), true);
+  by_budget = affordable > r;
+  return std::min(std::max(r, affordable), last.resolution);
 }
 
 }  // namespace
@@ -181,7 +165,7 @@ double next_resolution(const Attempt& last, double tolerance, double finest, con
 /// Otherwise runs at the resolution the last bound points to (next_resolution) follow, at
 /// most kAutoChecks, until one is within the tolerance:
 /// finer than the tolerance where the scene books more than it (transmissions and reflections
-/// carry errors on and grow them), as far as kAimInteractions allows; where the pilot left
+/// carry errors on and grow them); where the pilot left
 /// droplets, only once a run at the tolerance has shown the bound still falls (a spray's
 /// droplets' error does not); never finer than what is left of `solver.budget` affords, and
 /// each run is stopped where it would spend more. Where the bound stops falling, or the next
@@ -240,19 +224,15 @@ RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
   while (runs.size() <= static_cast<std::size_t>(kAutoChecks) && runs.back().bound() > tolerance &&
          !recorder.stop_asked()) {
     const Attempt& last = runs.back();
-    HeldBy held = HeldBy::nothing;
-    const double r = next_resolution(last, tolerance, finest, scaling, left, held);
-    short_of =
-        held == HeldBy::budget     ? over_budget
-        : held == HeldBy::run_work ? "a finer resolution would take more than the aim's " +
-                                         std::to_string(kAimInteractions) + " interactions a run"
-        : finest < tolerance
-            ? "no finer resolution is allowed (" + shortest(kFinestResolution) + " × the tolerance)"
-            : "the pilot, at the tolerance, left droplets: a spray's error does not fall with the resolution, so "
-              "none finer is tried";
+    bool by_budget = false;
+    const double r = next_resolution(last, tolerance, finest, scaling, left, by_budget);
+    short_of = by_budget ? over_budget
+               : finest < tolerance
+                   ? "no finer resolution is allowed (" + shortest(kFinestResolution) + " × the tolerance)"
+                   : "the pilot, at the tolerance, left droplets: a spray's error does not fall with the resolution, "
+                     "so none finer is tried";
     if (!(r < last.resolution / 1.05)) break;
-    const long cap = std::max(
-        1L, std::min(static_cast<long>(left), r < tolerance ? kAimInteractions : scene.solver.max_interactions));
+    const long cap = std::max(1L, std::min(static_cast<long>(left), scene.solver.max_interactions));
     Attempt next;
     try {
       next = attempt(scene, r, cap, recorder);
@@ -261,10 +241,9 @@ RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
       break;  // keep what they give
     }
     spend(next);
-    short_of = !next.stopped_by(cap, scene) ? "the bound stopped falling with the resolution"
-               : cap == kAimInteractions    ? "a run at " + shortest(r) + " took more than the aim's " +
-                                               std::to_string(kAimInteractions) + " interactions"
-                                         : "a run at " + shortest(r) + " took more than what was left of solver.budget";
+    short_of = next.stopped_by(cap, scene)
+                   ? "a run at " + shortest(r) + " took more than what was left of solver.budget"
+                   : "the bound stopped falling with the resolution";
     scaling.measure(last.resolution, last.interactions(), last.bound(), r, next.interactions(), next.bound());
     // The same run again (a fan's steps at their widest, 0.02, at both resolutions): no sign
     // the bound stopped following the resolution, which is not yet finer where it counts.
