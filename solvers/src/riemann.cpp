@@ -701,7 +701,7 @@ RiemannSolution solve_traction_end(const Material& m, const State& state, Side s
 double label_density(const State& st) { return st.stretch.value() / std::cosh(st.rapidity); }
 
 double momentum_density(const Material& m, const State& st) {
-  return m.enthalpy_density(st.stretch) * st.stretch.value() * std::sinh(st.rapidity);
+  return momentum_density(st.stretch.value(), std::sinh(st.rapidity), m.enthalpy_density(st.stretch));
 }
 
 EnergyParts energy_parts(const Material& m, const State& st) {
@@ -716,10 +716,8 @@ EnergyParts energy_parts(const Material& m, const State& st) {
 }
 
 double energy_density(const Material& m, const State& st) {
-  // ((e+p)γ² − p) s/γ = (e+p) s cosh φ − p s / cosh φ
-  const double s = st.stretch.value();
-  const double ch = std::cosh(st.rapidity);
-  return m.enthalpy_density(st.stretch) * s * ch - m.pressure(st.stretch) * s / ch;
+  return energy_density(st.stretch.value(), std::cosh(st.rapidity), m.pressure(st.stretch),
+                        m.enthalpy_density(st.stretch));
 }
 
 bool representable(Stretch s) { return std::abs(s.log()) < kRepresentableLogStretch; }

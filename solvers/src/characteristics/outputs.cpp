@@ -28,15 +28,15 @@ void Tracker::account_front_end(int id, double t) {
   if (left.material == nullptr || right.material == nullptr) return;
   if (!jump && right.material->linearly_degenerate()) return;  // moves at its characteristic speed: exact
   // [F] with F = p v, the energy flux per unit label.
-  const auto jump_F = [&](double p_left, double p_right) {
-    return p_right * std::tanh(right.state.rapidity) - p_left * std::tanh(left.state.rapidity);
+  const auto jump_F = [](const Region::Books& l, const Region::Books& r) {
+    return r.pressure * r.velocity - l.pressure * l.velocity;
   };
   if (!jump) {
     // A step of a smooth wave: what its label-jump speed m misses of m[E] = [F] and
     // m[P] = [p], differences of O(1) numbers that are third order in its strength.
     const Region::Books& l = books_of(left);
     const Region::Books& r = books_of(right);
-    waves_energy_ -= (n.dXdt * (r.energy - l.energy) - jump_F(l.pressure, r.pressure)) * (t - n.t0);
+    waves_energy_ -= (n.dXdt * (r.energy - l.energy) - jump_F(l, r)) * (t - n.t0);
     waves_momentum_ -= (n.dXdt * (r.momentum - l.momentum) - (r.pressure - l.pressure)) * (t - n.t0);
     return;
   }
@@ -52,7 +52,7 @@ void Tracker::account_front_end(int id, double t) {
   if (!from_jump.ok()) {
     const Region::Books& l = books_of(left);
     const Region::Books& r = books_of(right);
-    rate = n.dXdt * (r.energy - l.energy) - jump_F(l.pressure, r.pressure);
+    rate = n.dXdt * (r.energy - l.energy) - jump_F(l, r);
   }
   dissipated_ += rate * (t - n.t0);
 }

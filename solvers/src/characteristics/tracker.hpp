@@ -128,9 +128,9 @@ struct Region {
   mutable FrontSpeeds speeds[2] = {{std::numeric_limits<double>::quiet_NaN(), 0.0},
                                    {std::numeric_limits<double>::quiet_NaN(), 0.0}};  ///< [0] C−, [1] C+
   mutable Hyperbolic hyperbolic{0.0, 0.0, 1.0, 1.0};  ///< of its rapidity (cosh 0 until asked for)
-  /// Pressure, energy and momentum density per unit label.
+  /// Pressure, energy and momentum density per unit label, and the velocity.
   struct Books {
-    double pressure = std::numeric_limits<double>::quiet_NaN(), energy = 0.0, momentum = 0.0;
+    double pressure = std::numeric_limits<double>::quiet_NaN(), energy = 0.0, momentum = 0.0, velocity = 0.0;
   };
   mutable Books books{};
 };
@@ -764,9 +764,12 @@ class Tracker {
   const Region::Books& books_of(const Region& r) const {
     Region::Books& b = r.books;
     if (std::isnan(b.pressure)) {
+      const Hyperbolic& h = hyperbolic_of(r);
       b.pressure = r.material->pressure(r.state.stretch);
-      b.energy = energy_density(*r.material, r.state);
-      b.momentum = momentum_density(*r.material, r.state);
+      const double s = r.state.stretch.value(), enthalpy = r.material->enthalpy_density(r.state.stretch);
+      b.energy = energy_density(s, h.cosh, b.pressure, enthalpy);
+      b.momentum = momentum_density(s, h.sinh, enthalpy);
+      b.velocity = h.sinh / h.cosh;
     }
     return b;
   }

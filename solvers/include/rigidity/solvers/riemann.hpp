@@ -223,6 +223,15 @@ Solved<double> hugoniot_rapidity(const State& outer, const JumpLaws& at_outer, S
 [[nodiscard]] double label_density(const State& state);
 [[nodiscard]] double momentum_density(const Material& material, const State& state);
 [[nodiscard]] double energy_density(const Material& material, const State& state);
+/// The same densities from what a caller has at hand: the stretch s, sinh φ or cosh φ of the
+/// rapidity, the pressure p and e + p. Momentum (e+p) s γ v = (e+p) s sinh φ; energy
+/// ((e+p)γ² − p) s/γ = (e+p) s cosh φ − p s / cosh φ.
+[[nodiscard]] inline double momentum_density(double s, double sinh_phi, double enthalpy) {
+  return enthalpy * s * sinh_phi;
+}
+[[nodiscard]] inline double energy_density(double s, double cosh_phi, double p, double enthalpy) {
+  return enthalpy * s * cosh_phi - p * s / cosh_phi;
+}
 /// energy_density split into its parts per unit label, each on its own scale: kinetic
 /// s [e (cosh φ − 1) + p sinh φ tanh φ] (with cosh φ − 1 = 2 sinh²(φ/2)), internal
 /// W(s) − ρ00 and rest ρ00; they add up to energy_density.
