@@ -1188,8 +1188,19 @@ void Tracker::set_offsets(int first, int last, bool left_boundary, bool right_bo
     // adds twice what its ramp's rapidity now is beyond the staircase step it is on.
     const std::vector<int>& out = left_boundary ? emitted_right_ : emitted_left_;
     const int f_in = left_boundary ? 0 : 1;
-    if (out.size() != 1 || count_in[f_in] != 1 || count_in[1 - f_in] != 0) return;
     const Node& end = nodes_[left_boundary ? first : last];
+    if (out.size() == 1 && count_in[0] == 0 && count_in[1] == 0 && nodes_[out.front()].smooth &&
+        end.attach == Attach::boundary && walls_[end.partner].motion.ramps) {
+      // A ramping piston's own step, taken when the ramp's velocity is the mean of the two
+      // steps of its staircase: its value is the ramp's rapidity then, not the mean of theirs
+      // (twice the difference, in the invariant of a simple wave).
+      Node& step = nodes_[out.front()];
+      const Wall& w = walls_[end.partner];
+      const double mean = 0.5 * (w.rapidity + w.motion.rapidities[w.segment - 1]);
+      step.offset = 2.0 * (ramp_rapidity(w.motion.row_times, w.motion.row_rapidities, t) - mean);
+      return;
+    }
+    if (out.size() != 1 || count_in[f_in] != 1 || count_in[1 - f_in] != 0) return;
     double offset = offset_in[f_in];
     Node& step = nodes_[out.front()];
     if (end.attach == Attach::boundary && !walls_[end.partner].traction) {
