@@ -427,9 +427,14 @@ double Tracker::light_alive_error(int piece) const {
       return q[a].smooth && q[b].smooth && jump(a) * jump(b) > 0.0 && width(a, b) > 0.0;
     };
     const auto slope = [&](std::size_t a, std::size_t b) { return 0.5 * std::abs(jump(a) + jump(b)) / width(a, b); };
+    // A line is drawn over a strip of a train only with another strip of it beside (see
+    // line_through): two steps alone are sampled as their staircase.
+    const auto drawn = [&](std::size_t a, std::size_t b) {
+      return train(a, b) && ((a > 0 && train(a - 1, a)) || (b + 1 < q.size() && train(b, b + 1)));
+    };
     for (std::size_t k = 0; k < q.size(); ++k) {
       if (!q[k].smooth) continue;
-      const bool before = k > 0 && train(k - 1, k), after = k + 1 < q.size() && train(k, k + 1);
+      const bool before = k > 0 && drawn(k - 1, k), after = k + 1 < q.size() && drawn(k, k + 1);
       if (before && after) {
         const double mean = 0.5 * (width(k - 1, k) + width(k, k + 1));
         error += std::abs(slope(k, k + 1) - slope(k - 1, k)) * mean * mean / 12.0;
