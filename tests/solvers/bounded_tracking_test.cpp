@@ -554,6 +554,28 @@ TEST(ErrorBound, TheAimResolvesAsFinelyAsItsBudgetAffords) {
   EXPECT_TRUE(said) << "the warning does not name the budget";
 }
 
+TEST(ErrorBound, AnExactScenesPilotOverItsShareLeavesTheRunToTheTolerance) {
+  // Thirty Hooke segments ringing between bonded walls: every wave a jump, the run exact at
+  // any resolution, so a coarser pilot would cost the same. With solver.budget = 2000 the
+  // pilot stops at its share, 200 interactions, with nothing booked: the run at the tolerance
+  // follows, as without the aim, to the end.
+  std::string yaml =
+      "name: ringing\nmaterials: {soft: {model: hooke, wave_speed: 0.5}}\n"
+      "bodies: [{name: bar, material: soft, segments: [";
+  for (int k = 0; k < 30; ++k)
+    yaml += std::string(k > 0 ? ", " : "") + (k % 2 ? "{length: 0.1, velocity: -0.2}" : "{length: 0.1, velocity: 0.2}");
+  yaml +=
+      "]}]\nboundaries: {left: {type: wall, bonded: true}, right: {type: wall, bonded: true}}\n"
+      "solver: {budget: 2000}\ntime: {end: 20}\n";
+  const RunResult r = solve(load_scene_string(yaml, "<test>"));
+  EXPECT_EQ(r.status, "ok");
+  ASSERT_GT(r.stats.interactions, 200) << "the pilot must outrun its share: the test checks nothing";
+  EXPECT_EQ(solver_number(r, "error_bound"), 0.0);
+  bool aimed = false;
+  for (const auto& [name, value] : r.solver_numbers) aimed = aimed || name == "resolution_runs";
+  EXPECT_FALSE(aimed) << "an exact scene's pilot was made again more coarsely";
+}
+
 TEST(ErrorBound, ABoundAboveTheToleranceSaysWhatHoldsItUp) {
   // The three bars after a short push of the piston, to t = 15 at tolerance 1e-2: their
   // waves scatter at both contacts until the merges that hold the fronts to the cap book a

@@ -155,6 +155,136 @@ double next_resolution(const Attempt& last, double tolerance, double finest, con
   return std::min(std::max(r, affordable), last.resolution);
 }
 
+/// The runs `resolution: auto` makes, what they spent of `solver.budget`, and why the aim
+/// ended short of the tolerance where it did.
+class Aim {
+ public:
+  Aim(const Scene& scene, RunRecorder& recorder)
+      : scene_(scene),
+        recorder_(recorder),
+        tolerance_(scene.solver.tolerance),
+        left_(static_cast<double>(scene.solver.budget)) {}
+
+  /// The pilot. One that takes more than 1/kPilotShare of what is left of the budget is stopped
+  /// and made again as coarsely as the work it would have taken to the end, as the default
+  /// Scaling has it, says fits in that share (at least ten times more coarsely; at kCoarsestAim
+  /// only the scene's own budgets stop it); one stopped with nothing booked yet (an exact scene,
+  /// whose work no resolution changes) is not. False where none finished: an error, or a budget
+  /// (the run at the tolerance then goes on as without the aim, or reports it), unless the
+  /// recorder asked to stop, when the pilot is handed on as it is.
+  bool pilot() {
+    try {
+      double r = std::max(tolerance_, on_ladder(std::min(kPilotResolution * tolerance_, kCoarsestAim), false));
+      for (;;) {
+        const bool coarsest = r >= kCoarsestAim;
+        const double share = left_ / kPilotShare;
+        const long cap = coarsest ? scene_.solver.max_interactions : std::max(1L, static_cast<long>(share));
+        Attempt a = run(r, cap);
+        if (coarsest || !a.stopped_by(cap, scene_) || recorder_.stop_asked() || !(a.bound() > 0.0)) {
+          runs_.push_back(std::move(a));
+          break;
+        }
+        const double to_end = a.interactions() / std::max(a.result.t_reached / scene_.t_end, 1e-12);
+        r = std::min(kCoarsestAim,
+                     std::max(on_ladder(10.0 * r, true),
+                              on_ladder(r * std::pow(to_end / std::max(share, 1.0), 1.0 / Scaling{}.work), true)));
+      }
+    } catch (const std::exception&) {
+      return false;
+    }
+    return runs_.front().finished() || recorder_.stop_asked();
+  }
+
+  /// Runs at the resolution the last bound points to (next_resolution), at most kAutoChecks,
+  /// until one is within the tolerance, the bound stops falling or the next run would not be
+  /// finer; short_of_ says why it ended above the tolerance.
+  void refine() {
+    // A pilot that left droplets (a spray, maybe) is resolved no finer than the tolerance
+    // until a run at it shows its bound still falls with the resolution: a spray's droplets
+    // book an error that does not, and a pilot as coarse as kCoarsestAim is coarser than any a
+    // spray takes.
+    const double finest_allowed = on_ladder(kFinestResolution * tolerance_, true);
+    double finest = runs_.front().spray() || runs_.front().droplets() ? tolerance_ : finest_allowed;
+    Scaling scaling;
+    while (runs_.size() <= static_cast<std::size_t>(kAutoChecks) && runs_.back().bound() > tolerance_ &&
+           !recorder_.stop_asked()) {
+      const Attempt& last = runs_.back();
+      bool by_budget = false;
+      const double r = next_resolution(last, tolerance_, finest, scaling, left_, by_budget);
+      short_of_ =
+          by_budget
+              ? "a finer resolution would take more than solver.budget = " + std::to_string(scene_.solver.budget) +
+                    " interactions over the aim's runs"
+          : finest < tolerance_ ? "no finer resolution is allowed (" + shortest(kFinestResolution) + " × the tolerance)"
+                                : "the pilot, at the tolerance, left droplets: a spray's error does not fall with the "
+                                  "resolution, so none finer is tried";
+      if (!(r < last.resolution / 1.05)) break;
+      const long cap = std::max(1L, std::min(static_cast<long>(left_), scene_.solver.max_interactions));
+      Attempt next;
+      try {
+        next = run(r, cap);
+      } catch (const std::exception&) {
+        short_of_ = "a run at " + shortest(r) + " met a problem the coarser ones did not";
+        break;  // keep what they give
+      }
+      short_of_ = next.stopped_by(cap, scene_)
+                      ? "a run at " + shortest(r) + " took more than what was left of solver.budget"
+                      : "the bound stopped falling with the resolution";
+      scaling.measure(last.resolution, last.interactions(), last.bound(), r, next.interactions(), next.bound());
+      // The same run again (a fan's steps at their widest, 0.02, at both resolutions): no sign
+      // the bound stopped following the resolution, which is not yet finer where it counts.
+      const bool same = next.finished() && next.result.stats.interactions == last.result.stats.interactions &&
+                        next.bound() == last.bound();
+      const bool falls =
+          same || (next.finished() && next.bound() < last.bound() * std::pow(r / last.resolution, kLeastFall));
+      if (r <= tolerance_) finest = finest_allowed;
+      runs_.push_back(std::move(next));
+      const std::size_t chosen = choose(runs_, tolerance_);
+      for (std::size_t k = 0; k < runs_.size(); ++k)
+        if (k != chosen) runs_[k].drop_outputs();
+      if (!falls || runs_.back().bound() <= tolerance_) break;
+      short_of_ = "the aim makes at most " + std::to_string(kAutoChecks + 1) + " runs";
+    }
+  }
+
+  /// The run chosen (choose), handed to the recorder, with the aim's numbers and, where its
+  /// bound is above the tolerance, where and why the aim stopped.
+  RunResult hand_on() {
+    const double pilot_bound = runs_.front().bound();
+    Attempt& best = runs_[choose(runs_, tolerance_)];
+    replay(best, recorder_);
+    RunResult result = std::move(best.result);
+    result.solver_numbers.emplace_back("resolution", best.resolution);
+    result.solver_numbers.emplace_back("pilot_error_bound", pilot_bound);
+    result.solver_numbers.emplace_back("resolution_runs", static_cast<double>(made_));
+    result.stats.wall_time_s = time_;
+    if (result.solver_number("error_bound") > tolerance_ && !short_of_.empty() && scene_.solver.tolerance_given)
+      result.warnings.push_back("solver.resolution: auto resolved the waves at " + shortest(best.resolution) + " (" +
+                                std::to_string(made_) + " runs): " + short_of_);
+    recorder_.complete(result, scene_.t_end);
+    return result;
+  }
+
+ private:
+  /// A run at resolution r stopped at `cap` interactions, its work and time counted.
+  Attempt run(double r, long cap) {
+    Attempt a = attempt(scene_, r, cap, recorder_);
+    left_ -= static_cast<double>(a.result.stats.interactions);
+    time_ += a.result.stats.wall_time_s;
+    ++made_;
+    return a;
+  }
+
+  const Scene& scene_;
+  RunRecorder& recorder_;
+  double tolerance_;
+  double left_;  ///< of the budget
+  double time_ = 0.0;
+  int made_ = 0;
+  std::vector<Attempt> runs_;  ///< the pilot, then the runs that finished or were stopped
+  std::string short_of_;       ///< why the aim ended with the bound above the tolerance
+};
+
 }  // namespace
 
 /// `solver.resolution: auto` (the default): the bound is aimed at the tolerance. A pilot at
@@ -175,100 +305,16 @@ double next_resolution(const Attempt& last, double tolerance, double finest, con
 /// the tolerance, as without the aim; a pilot interrupted, or stopped at `recorder`'s request,
 /// is handed on as it is, and a later run so stopped ends the aim.
 RunResult solve_characteristics(const Scene& scene, RunRecorder& recorder) {
-  const double tolerance = scene.solver.tolerance;
-  std::vector<Attempt> runs;
-  double left = static_cast<double>(scene.solver.budget);  // of the aim's budget
-  int made = 0;
-  double time = 0.0;
-  const auto spend = [&](const Attempt& a) {
-    left -= static_cast<double>(a.result.stats.interactions);
-    time += a.result.stats.wall_time_s;
-    ++made;
-  };
   if (scene.solver.auto_resolution) {
-    try {
-      double pilot = std::max(tolerance, on_ladder(std::min(kPilotResolution * tolerance, kCoarsestAim), false));
-      for (;;) {
-        const bool coarsest = pilot >= kCoarsestAim;
-        const long cap = coarsest ? scene.solver.max_interactions : std::max(1L, static_cast<long>(left / kPilotShare));
-        Attempt a = attempt(scene, pilot, cap, recorder);
-        spend(a);
-        if (coarsest || !a.stopped_by(cap, scene) || recorder.stop_asked()) {
-          runs.push_back(std::move(a));
-          break;
-        }
-        pilot = on_ladder(std::min(10.0 * pilot, kCoarsestAim), true);
-      }
-    } catch (const std::exception&) {
-      runs.clear();  // the run at the tolerance meets the problem and reports it
+    Aim aim(scene, recorder);
+    if (aim.pilot()) {
+      aim.refine();
+      return aim.hand_on();
     }
   }
-  if (runs.empty() || (!runs.front().finished() && !recorder.stop_asked())) {
-    Scene at_tolerance = scene;
-    at_tolerance.solver.auto_resolution = false;
-    RunResult result = characteristics::Tracker(at_tolerance, recorder).run();
-    recorder.complete(result, scene.t_end);
-    return result;
-  }
-  const double pilot_bound = runs.front().bound();
-  // A pilot that left droplets (a spray, maybe) is resolved no finer than the tolerance until a
-  // run at it shows its bound still falls with the resolution: a spray's droplets book an error
-  // that does not, and a pilot as coarse as kCoarsestAim is coarser than any a spray takes.
-  double finest =
-      runs.front().spray() || runs.front().droplets() ? tolerance : on_ladder(kFinestResolution * tolerance, true);
-  Scaling scaling;
-  const std::string over_budget =
-      "a finer resolution would take more than solver.budget = " + std::to_string(scene.solver.budget) +
-      " interactions over the aim's runs";
-  std::string short_of;  // why the aim ended with the bound above the tolerance
-  while (runs.size() <= static_cast<std::size_t>(kAutoChecks) && runs.back().bound() > tolerance &&
-         !recorder.stop_asked()) {
-    const Attempt& last = runs.back();
-    bool by_budget = false;
-    const double r = next_resolution(last, tolerance, finest, scaling, left, by_budget);
-    short_of = by_budget ? over_budget
-               : finest < tolerance
-                   ? "no finer resolution is allowed (" + shortest(kFinestResolution) + " × the tolerance)"
-                   : "the pilot, at the tolerance, left droplets: a spray's error does not fall with the resolution, "
-                     "so none finer is tried";
-    if (!(r < last.resolution / 1.05)) break;
-    const long cap = std::max(1L, std::min(static_cast<long>(left), scene.solver.max_interactions));
-    Attempt next;
-    try {
-      next = attempt(scene, r, cap, recorder);
-    } catch (const std::exception&) {
-      short_of = "a run at " + shortest(r) + " met a problem the coarser ones did not";
-      break;  // keep what they give
-    }
-    spend(next);
-    short_of = next.stopped_by(cap, scene)
-                   ? "a run at " + shortest(r) + " took more than what was left of solver.budget"
-                   : "the bound stopped falling with the resolution";
-    scaling.measure(last.resolution, last.interactions(), last.bound(), r, next.interactions(), next.bound());
-    // The same run again (a fan's steps at their widest, 0.02, at both resolutions): no sign
-    // the bound stopped following the resolution, which is not yet finer where it counts.
-    const bool same = next.finished() && next.result.stats.interactions == last.result.stats.interactions &&
-                      next.bound() == last.bound();
-    const bool falls =
-        same || (next.finished() && next.bound() < last.bound() * std::pow(r / last.resolution, kLeastFall));
-    if (r <= tolerance) finest = on_ladder(kFinestResolution * tolerance, true);
-    runs.push_back(std::move(next));
-    const std::size_t chosen = choose(runs, tolerance);
-    for (std::size_t k = 0; k < runs.size(); ++k)
-      if (k != chosen) runs[k].drop_outputs();
-    if (!falls || runs.back().bound() <= tolerance) break;
-    short_of = "the aim makes at most " + std::to_string(kAutoChecks + 1) + " runs";
-  }
-  Attempt& best = runs[choose(runs, tolerance)];
-  replay(best, recorder);
-  RunResult result = std::move(best.result);
-  result.solver_numbers.emplace_back("resolution", best.resolution);
-  result.solver_numbers.emplace_back("pilot_error_bound", pilot_bound);
-  result.solver_numbers.emplace_back("resolution_runs", static_cast<double>(made));
-  result.stats.wall_time_s = time;
-  if (result.solver_number("error_bound") > tolerance && !short_of.empty() && scene.solver.tolerance_given)
-    result.warnings.push_back("solver.resolution: auto resolved the waves at " + shortest(best.resolution) + " (" +
-                              std::to_string(made) + " runs): " + short_of);
+  Scene at_tolerance = scene;
+  at_tolerance.solver.auto_resolution = false;
+  RunResult result = characteristics::Tracker(at_tolerance, recorder).run();
   recorder.complete(result, scene.t_end);
   return result;
 }
