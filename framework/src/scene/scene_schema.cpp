@@ -307,9 +307,9 @@ Key solver_key() {
           Key::choice("resolution", {"tolerance", "auto"},
                       "characteristics: how finely waves are resolved: `auto` aims the error bound at the "
                       "tolerance (a pilot run at 10 x tolerance measures it, runs at the resolution it points to "
-                      "follow, finer than the tolerance where the scene books more than it, within about a second "
-                      "of extra work; the run with the least bound is kept), or `tolerance`: to the tolerance itself, "
-                      "one run")
+                      "follow, finer than the tolerance where the scene books more than it, all within "
+                      "solver.budget; the coarsest run within the tolerance, else the one with the least bound, is "
+                      "kept), or `tolerance`: to the tolerance itself, one run")
               .defaults_to(std::string("auto")),
           Key::integer("budget",
                        "characteristics with `resolution: auto`: the most interactions the aim spends over all its "
