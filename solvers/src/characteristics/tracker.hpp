@@ -178,8 +178,10 @@ struct Node {
   /// Smooth steps: the step's own value of its family's invariant less the one its sides give
   /// it (see Tracker::wedge). A step a ramping piston reflects leaves at the ramp's rapidity of
   /// that instant, where the region next to the piston holds the step of the staircase it is
-  /// in: twice their difference; a wall reflects it with the invariant's sign, a free end
-  /// as it is, crossings and transmissions carry it on.
+  /// in: twice their difference; a step the piston's ramp takes itself carries the ramp's
+  /// rapidity at that instant, not the mean of its two staircase steps': twice that
+  /// difference; a wall reflects it with the invariant's sign, a free end as it is, crossings
+  /// and transmissions carry it on.
   double offset = 0.0;
 
   [[nodiscard]] double X_at(double t) const { return X0 + dXdt * (t - t0); }
@@ -655,7 +657,8 @@ class Tracker {
   void settle_and_schedule(const Meeting& g, int interface, bool parted_inside, int droplet, int right_holder,
                            bool parted, double t);
   /// The offsets (Node::offset) of the smooth steps resolve_group has just emitted, from those
-  /// of the fronts that came in (per family: their sum and count).
+  /// of the fronts that came in (per family: their sum and count), or from a ramping piston's
+  /// ramp where it took the step.
   void set_offsets(int first, int last, bool left_boundary, bool right_boundary, const double offset_in[2],
                    const int count_in[2], double t);
   /// The L1 error at time t of the region a ramping piston has left behind its last step: its
