@@ -226,9 +226,10 @@ TEST(Piston, ARampsStaircaseIsWithinTheBoundOfTheExactPush) {
   const double fine = pushed_rod_error(1e-4, &bound_fine);
   std::printf("pushed rod to t = 0.8: error %.3g bound %.3g at 1e-3, error %.3g bound %.3g at 1e-4\n", coarse,
               bound_coarse, fine, bound_fine);
-  // The region the piston has left behind its last step is in the bound (without it the bound
-  // is half the error at 1e-3).
-  EXPECT_LE(coarse, bound_coarse);
+  // The rod is linearly degenerate: what the run books covers the error before the bound's
+  // stability factor of 2, the region the piston has left behind its last step included
+  // (without it the errors booked are half the error at 1e-3).
+  EXPECT_LE(coarse, 0.5 * bound_coarse);
   EXPECT_GT(coarse, 0.2 * bound_coarse) << "a bound far above the error says little";
   EXPECT_LT(fine, coarse / 5.0) << "the steps are characteristics: second order";
 }
