@@ -219,7 +219,7 @@ bodies:
   - {name: b1, material: m1, position: 1.3363, segments: [{length: 0.2227, velocity: -0.0515, stretch: 1.1318}, {length: 0.2227, velocity: -0.0726, stretch: 0.9537}, {length: 0.2227, velocity: -0.0602, stretch: 1.0783}]}
   - {name: b2, material: m2, position: 2.3834, length: 1.0075, velocity: 0.4163}
 boundaries: {left: {type: wall, bonded: true}, right: {type: free}}
-solver: {method: characteristics, tolerance: 1e-5}
+solver: {method: characteristics, tolerance: 1e-5, budget: 2000000}
 time: {end: 10.0}
 outputs: {snapshots: [{times: [10.0], quantities: [v, s], samples: 4001}]}
 )";
