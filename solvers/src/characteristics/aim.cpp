@@ -165,22 +165,27 @@ class Aim {
         tolerance_(scene.solver.tolerance),
         left_(static_cast<double>(scene.solver.budget)) {}
 
-  /// The pilot. One that takes more than 1/kPilotShare of what is left of the budget is stopped
+  /// The pilot. In a scene with a genuinely nonlinear body, one that takes more than
+  /// 1/kPilotShare of what is left of the budget is stopped
   /// and made again as coarsely as the work it would have taken to the end, as the default
   /// Scaling has it, says fits in that share (at least ten times more coarsely; at kCoarsestAim
-  /// only the scene's own budgets stop it); one stopped with nothing booked yet (an exact scene,
-  /// whose work no resolution changes) is not. False where none finished: an error, or a budget
+  /// only the scene's own budgets stop it). False where none finished: an error, or a budget
   /// (the run at the tolerance then goes on as without the aim, or reports it), unless the
   /// recorder asked to stop, when the pilot is handed on as it is.
   bool pilot() {
     try {
       double r = std::max(tolerance_, on_ladder(std::min(kPilotResolution * tolerance_, kCoarsestAim), false));
+      // Only fans split into steps make the work follow the resolution: a scene of linearly
+      // degenerate bodies costs about the same at any, and its pilot is not stopped.
+      bool fanned = false;
+      for (const BodyDecl& body : scene_.bodies)
+        for (const Segment& seg : body.segments) fanned = fanned || !scene_.material_of(seg).linearly_degenerate();
       for (;;) {
-        const bool coarsest = r >= kCoarsestAim;
+        const bool coarsest = r >= kCoarsestAim || !fanned;
         const double share = left_ / kPilotShare;
         const long cap = coarsest ? scene_.solver.max_interactions : std::max(1L, static_cast<long>(share));
         Attempt a = run(r, cap);
-        if (coarsest || !a.stopped_by(cap, scene_) || recorder_.stop_asked() || !(a.bound() > 0.0)) {
+        if (coarsest || !a.stopped_by(cap, scene_) || recorder_.stop_asked()) {
           runs_.push_back(std::move(a));
           break;
         }
