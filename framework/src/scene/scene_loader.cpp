@@ -79,13 +79,8 @@ class SceneBuilder {
     read_materials(root["materials"], scene);
     read_bodies(root["bodies"], scene);
     scene.t_end = root["time"]["end"].number;
-    if (!scene.solver.tolerance_given) {
-      bool degenerate = true;
-      for (const BodyDecl& body : scene.bodies)
-        for (const Segment& segment : body.segments)
-          degenerate = degenerate && scene.material_of(segment).linearly_degenerate();
-      if (!degenerate) scene.solver.tolerance = kNonlinearDefaultTolerance;
-    }
+    if (!scene.solver.tolerance_given && !scene.linearly_degenerate())
+      scene.solver.tolerance = kNonlinearDefaultTolerance;
     read_boundary(root["boundaries"]["left"], true, scene, scene.left);
     read_boundary(root["boundaries"]["right"], false, scene, scene.right);
     read_outputs(root["outputs"], root["time"]["end"], scene);

@@ -177,9 +177,7 @@ class Aim {
       double r = std::max(tolerance_, on_ladder(std::min(kPilotResolution * tolerance_, kCoarsestAim), false));
       // Only fans split into steps make the work follow the resolution: a scene of linearly
       // degenerate bodies costs about the same at any, and its pilot is not stopped.
-      bool fanned = false;
-      for (const BodyDecl& body : scene_.bodies)
-        for (const Segment& seg : body.segments) fanned = fanned || !scene_.material_of(seg).linearly_degenerate();
+      const bool fanned = !scene_.linearly_degenerate();
       for (;;) {
         const bool coarsest = r >= kCoarsestAim || !fanned;
         const double share = left_ / kPilotShare;
@@ -295,8 +293,8 @@ class Aim {
 /// `solver.resolution: auto` (the default): the bound is aimed at the tolerance. A pilot at
 /// kPilotResolution × tolerance (at most kCoarsestAim, at least the tolerance) measures it; a
 /// scene whose pilot is within the tolerance keeps it (an exact scene's bound is 0: one run).
-/// A pilot that takes more than 1/kPilotShare of `solver.budget` is stopped and made again ten
-/// times more coarsely (at kCoarsestAim, only the scene's own budgets stop it).
+/// In a scene with a genuinely nonlinear body, a pilot that takes more than 1/kPilotShare of
+/// `solver.budget` is stopped and made again more coarsely (Aim::pilot).
 /// Otherwise runs at the resolution the last bound points to (next_resolution) follow, at
 /// most kAutoChecks, until one is within the tolerance:
 /// finer than the tolerance where the scene books more than it (transmissions and reflections

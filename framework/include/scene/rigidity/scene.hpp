@@ -161,6 +161,14 @@ struct Scene {
   [[nodiscard]] std::string resolved_yaml() const { return resolver ? resolver() : std::string(); }
 
   [[nodiscard]] const Material& material_of(const Segment& seg) const { return *materials.at(seg.material).material; }
+  /// Every body's every segment is of a linearly degenerate material: every wave a jump, no
+  /// fan to split into steps.
+  [[nodiscard]] bool linearly_degenerate() const {
+    for (const BodyDecl& body : bodies)
+      for (const Segment& segment : body.segments)
+        if (!material_of(segment).linearly_degenerate()) return false;
+    return true;
+  }
 };
 
 }  // namespace rigidity
