@@ -102,7 +102,11 @@ bool Tracker::fan_sample(int n, double X, double t, State& state, double& x) con
     // has entered the fan's wedge without meeting a step yet has changed the state behind it. A
     // shock attached to the fan (a composite wave) runs along its edge, at its speed to round-off.
     const int other = id == n ? nodes_[n].next : n;
-    if (other == kNone || nodes_[other].fan != nodes_[id].fan) {
+    // A front of the other family that bounds the region on the side it comes from (a C− front
+    // on its right, a C+ front on its left) has not reached it yet: the region is still the fan.
+    const bool arriving = other != kNone && nodes_[other].kind == NodeKind::front &&
+                          nodes_[other].family == -f.family && (other == nodes_[n].next) == (nodes_[other].family < 0);
+    if (!arriving && (other == kNone || nodes_[other].fan != nodes_[id].fan)) {
       const double edge = other == kNone ? (id == n ? kInf : -kInf) : (nodes_[other].X_at(t) - f.X0) / (t - f.t0);
       const double round_off = kAttachedEdge * (fastest - slowest);
       if (id == n ? edge < fastest - round_off : edge > slowest + round_off) return false;

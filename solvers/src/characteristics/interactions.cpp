@@ -60,10 +60,10 @@ void Tracker::schedule_meets(int a, int b) {
 /// wave curves meet (Hugoniot for a shock, integral curve for a fan step), found from that
 /// guess by secant steps to round-off, or until they miss each other by less than
 /// star_mismatch_; each front carries what its state misses its curve by as an error rate
-/// for as long as it lives. A C− wave left weaker than the threshold by two fronts of one
-/// family merging is held back (its strength times the length it could sweep is booked).
-/// Returns false (doing nothing) when the full Riemann problem is needed: a crowd, a strong
-/// shock, a fan to split, cavitation.
+/// for as long as it lives. Two steps of smooth waves crossing head-on are characteristics
+/// and take the two-rarefaction star as it is (steps_pass). A C− wave left weaker than the threshold by two fronts of
+/// one family merging is held back (its strength times the length it could sweep is booked). Returns false (doing
+/// nothing) when the full Riemann problem is needed: a crowd, a strong shock, a fan to split, cavitation.
 bool Tracker::cross_in_place(int a, int b, double t, InPlace& c) {
   CrossingSides s;
   if (!two_rarefaction_star(a, b, t, s, c)) return false;
@@ -76,7 +76,7 @@ bool Tracker::cross_in_place(int a, int b, double t, InPlace& c) {
   // those the fronts brought in, passed on).
   c.strength[0] = std::abs(s.j_minus - (left.rapidity - s.psi_left));
   c.strength[1] = std::abs(right.rapidity + s.psi_right - s.j_plus);
-  if (m->linearly_degenerate()) {
+  if (m->linearly_degenerate() || steps_pass(a, b, c)) {
     if (same_state(c.star, left) || same_state(c.star, right)) return false;  // a wave vanishes
   } else if (!star_on_curves(a, b, s, c)) {
     return false;
@@ -84,6 +84,15 @@ bool Tracker::cross_in_place(int a, int b, double t, InPlace& c) {
 
   if (c.held_back && !(std::abs(label_jump_speeds(*m, left, right, +1).lab) < 1.0))
     return false;  // no faster than light
+  return true;
+}
+
+bool Tracker::steps_pass(int a, int b, InPlace& c) const {
+  const Node& na = nodes_[a];
+  const Node& nb = nodes_[b];
+  if (!na.smooth || !nb.smooth || na.family != +1 || nb.family != -1) return false;
+  c.kinds[0] = nb.front_kind;
+  c.kinds[1] = na.front_kind;
   return true;
 }
 

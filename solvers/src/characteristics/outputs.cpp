@@ -131,6 +131,7 @@ void Tracker::sample(const SampleTime& st) {
 }
 
 void Tracker::sample_probe(int index, double t) {
+  ++walk_epoch_;
   const ProbeDecl& probe = scene_.outputs.probes[index];
   const int body = probe_body(scene_, probe);
   Region r;
@@ -157,6 +158,7 @@ void Tracker::sample_probe(int index, double t) {
 }
 
 void Tracker::snapshot_body(const SnapshotDecl& snap, int b, double t) {
+  ++walk_epoch_;
   const double l0 = scene_.bodies[b].natural_length();
   auto piece = order_.begin();
   const auto next_piece = [&] {

@@ -228,36 +228,18 @@ bool Tracker::reconstruct(int n, double X, double t, State& state, double& dx) c
   bool changed = false;
   dx = 0.0;
   for (int family : {-1, +1}) {
-    const int l = node.kind == NodeKind::front ? strip_edge(n, family, &Node::prev) : n;
-    const int r = strip_edge(node.next, family, &Node::next);
+    StripWalk& w = strip_of(n, family, t);
+    const int l = w.l, r = w.r;
     const double Xl = nodes_[l].X_at(t), Xr = nodes_[r].X_at(t);
     if (!(Xr > Xl)) continue;
     Ramp ramps[kMaxRamps];
     const int count = wave_ramps(n, X, family, t, l, r, ramps);
     const double at_end = end_condition(family, X, t, l, r, ramps, count);
     if (count == 0 && at_end == 0.0) continue;
+    // The strip ends at an interface: the lab length is left as the staircase has it.
+    if (!w.one_material) continue;
     double to_X = 0.0, to_r = 0.0;
-    bool past = false, one_material = true;  // past: the walk is right of the region that holds X
-    for (int k = l; k != r; k = nodes_[k].next) {
-      const Region& here = nodes_[k].right;
-      if (here.material != &m) {
-        one_material = false;
-        break;
-      }
-      const double rate = -0.5 * label_density(here.state) *
-                          (std::tanh(here.state.rapidity) + family / m.sound_speed(here.state.stretch));
-      const double lo = nodes_[k].X_at(t), hi = nodes_[nodes_[k].next].X_at(t);
-      double part = 0.0, to_here = 0.0;
-      for (int i = 0; i < count; ++i) {
-        part += rate * ramps[i].integral(lo, hi);
-        if (k == n) to_here += rate * ramps[i].integral(lo, X);
-      }
-      to_r += part;
-      if (past) continue;
-      to_X += k == n ? to_here : part;
-      past = k == n;
-    }
-    if (!one_material) continue;
+    strip_shift(w, ramps, count, X, to_X, to_r);
     double correction = 0.0;
     for (int i = 0; i < count; ++i) correction += ramps[i].at(X);
     correction += at_end;
@@ -270,6 +252,66 @@ bool Tracker::reconstruct(int n, double X, double t, State& state, double& dx) c
   if (!s.ok() || !representable(s.value)) return false;
   state = State{0.5 * (j[1] + j[0]), s.value};
   return true;
+}
+
+Tracker::StripWalk& Tracker::strip_of(int n, int family, double t) const {
+  StripWalk& w = strip_walks_[family > 0 ? 1 : 0];
+  if (w.epoch == walk_epoch_ && !w.nodes.empty()) {
+    if (w.cursor < w.nodes.size() && w.nodes[w.cursor] == n) return w;
+    const auto at = std::find(w.nodes.begin() + static_cast<long>(w.cursor), w.nodes.end(), n);
+    if (at != w.nodes.end()) {
+      w.cursor = static_cast<std::size_t>(at - w.nodes.begin());
+      return w;
+    }
+  }
+  w.epoch = walk_epoch_;
+  w.l = nodes_[n].kind == NodeKind::front ? strip_edge(n, family, &Node::prev) : n;
+  w.r = strip_edge(nodes_[n].next, family, &Node::next);
+  w.one_material = true;
+  w.nodes.clear();
+  w.rates.clear();
+  w.lo.clear();
+  w.count = -1;
+  const Material* m = nodes_[n].right.material;
+  for (int k = w.l; k != w.r; k = nodes_[k].next) {
+    const Region& here = nodes_[k].right;
+    if (here.material != m) {
+      w.one_material = false;
+      break;
+    }
+    const Hyperbolic& h = hyperbolic_of(here);
+    w.nodes.push_back(k);
+    w.rates.push_back(-0.5 * here.state.stretch.value() / h.cosh *
+                      (h.sinh / h.cosh + family / m->sound_speed(here.state.stretch)));
+    w.lo.push_back(nodes_[k].X_at(t));
+  }
+  w.lo.push_back(nodes_[w.r].X_at(t));
+  const auto at = std::find(w.nodes.begin(), w.nodes.end(), n);
+  w.cursor = static_cast<std::size_t>(at - w.nodes.begin());
+  return w;
+}
+
+void Tracker::strip_shift(StripWalk& w, const Ramp* ramps, int count, double X, double& to_X, double& to_r) {
+  std::array<double, 6 * kMaxRamps> lines{};
+  for (int i = 0; i < count; ++i) {
+    const Ramp& a = ramps[i];
+    const double coefficients[6] = {a.c0, a.q, a.X0, static_cast<double>(a.sign), a.from, a.to};
+    std::copy(coefficients, coefficients + 6, lines.begin() + 6 * i);
+  }
+  if (w.count != count || w.lines != lines) {
+    w.count = count;
+    w.lines = lines;
+    w.before.assign(w.nodes.size(), 0.0);
+    w.to_r = 0.0;
+    for (std::size_t k = 0; k < w.nodes.size(); ++k) {
+      w.before[k] = w.to_r;
+      for (int i = 0; i < count; ++i) w.to_r += w.rates[k] * ramps[i].integral(w.lo[k], w.lo[k + 1]);
+    }
+  }
+  double part = 0.0;
+  for (int i = 0; i < count; ++i) part += ramps[i].integral(w.lo[w.cursor], X);
+  to_X = w.before[w.cursor] + w.rates[w.cursor] * part;
+  to_r = w.to_r;
 }
 
 double Tracker::end_condition(int family, double X, double t, int l, int r, const Ramp* ramps, int count) const {
@@ -346,8 +388,10 @@ int Tracker::wave_ramps(int n, double X, int family, double t, int l, int r, Ram
       interleaved = count > 0;
     }
   }
-  // (A step still on the line of its centred fan has the exact fan beyond it, see fan_sample.)
-  if (count == 0 && is_step(r, family) && nodes_[r].fan == kNone) {  // a wave right of the plateau
+  // (A step still on the line of its centred fan has the exact fan beyond it, see fan_sample,
+  // up to the nearest front of the other family: beyond that the wave's line goes on.)
+  if (count == 0 && is_step(r, family) &&
+      (nodes_[r].fan == kNone || nodes_[n].next != r)) {  // a wave right of the plateau
     const int r2 = strip_edge(nodes_[r].next, family, &Node::next);
     const double jump = own_jump(r);
     const double reach = kPlateauRatio * (nodes_[r2].X_at(t) - Xr);
@@ -356,7 +400,8 @@ int Tracker::wave_ramps(int n, double X, int family, double t, int l, int r, Ram
     if (w.slope * jump > 0.0) ramps[count++] = Ramp{w.at_a + jump, w.slope, Xr, on ? 0 : jump > 0.0 ? 1 : -1};
   }
   const bool in_wedge = count == 1 && ramps[0].sign == 0;
-  if (!in_wedge && !interleaved && is_step(l, family) && nodes_[l].fan == kNone) {  // a wave left of the plateau
+  if (!in_wedge && !interleaved && is_step(l, family) &&
+      (nodes_[l].fan == kNone || l != n)) {  // a wave left of the plateau
     const int l2 = strip_edge(nodes_[l].prev, family, &Node::prev);
     const double jump = own_jump(l);
     const double X2 = nodes_[l2].X_at(t);

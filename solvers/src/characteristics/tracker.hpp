@@ -14,6 +14,7 @@
 //   reconstruction.cpp  smooth waves sampled between their steps, and the error of doing so
 //   fans.cpp          centred fans: one front until reached, then split; their exact samples
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -517,6 +518,12 @@ class Tracker {
     const Region* right = nullptr;
     double psi_left = 0.0, psi_right = 0.0, j_plus = 0.0, j_minus = 0.0;
   };
+  /// Two steps of smooth waves crossing head-on (a C+ step a, a C− step b) are characteristics:
+  /// each carries its own invariant's jump through the other, so the star is the
+  /// two-rarefaction star, with no wave curve to meet (a compression's step misses its Hugoniot
+  /// by a third-order term, which the smooth wave it stands for does not have), and each goes on
+  /// as the kind of step it came in as (c.kinds). False where either is no smooth step.
+  bool steps_pass(int a, int b, InPlace& c) const;
   /// The two-rarefaction star of fronts a < b at t (c.X, c.star, c.psi_star), or false where it is no simple crossing.
   bool two_rarefaction_star(int a, int b, double t, CrossingSides& s, InPlace& c);
   /// The first guess of a genuinely nonlinear crossing's star: each wave passed on with the other invariant's jump.
@@ -955,6 +962,32 @@ class Tracker {
   /// another body or a ramping piston).
   double end_condition(int family, double X, double t, int l, int r, const Ramp* ramps, int count) const;
   static constexpr int kMaxRamps = 5;
+  /// The strip of `family` that holds the region right of node n at time t: its bounds l and
+  /// r (the nearest fronts of the family either side, or what bounds the strip: an end, an
+  /// interface, a true jump; see strip_edge), its regions and how the lab length per label,
+  /// ρ = s/γ, changes with the family's invariant in each, ∂ρ/∂J± = −ρ (tanh φ ± 1/c_s)/2. A
+  /// snapshot's samples rise in X, so consecutive ones share a strip: it is kept for them
+  /// within one walk_epoch_ (one snapshot or probe, while the nodes stand still), with the
+  /// lines last drawn over it.
+  struct StripWalk {
+    long epoch = -1;
+    int l = kNone, r = kNone;
+    bool one_material = true;       ///< no interface inside
+    std::vector<int> nodes;         ///< the strip's regions, left to right
+    std::vector<double> rates, lo;  ///< ∂ρ/∂J of each, and its left edge
+    std::size_t cursor = 0;         ///< where the last sample was
+    int count = -1;                 ///< the lines (ramps) `before` and to_r are for
+    std::array<double, 6 * kMaxRamps> lines{};
+    std::vector<double> before;  ///< the lab length the lines add over the regions left of each
+    double to_r = 0.0;           ///< and over the whole strip
+  };
+  /// The strip of `family` around n, from strip_walks_ or walked anew.
+  StripWalk& strip_of(int n, int family, double t) const;
+  /// The lab length the lines `ramps` add over the strip `w` up to X (in the region right of n,
+  /// to_X) and over all of it (to_r): ∫ ∂ρ/∂J · Σ ramps dX.
+  static void strip_shift(StripWalk& w, const Ramp* ramps, int count, double X, double& to_X, double& to_r);
+  mutable StripWalk strip_walks_[2];  ///< [0] C−, [1] C+
+  long walk_epoch_ = 0;
   /// The same in a light piece (whose fronts run on lab lines), at lab position x where the
   /// staircase's state is `state`: between two smooth steps of one wave, each family's
   /// invariant on the line through the steps' values (the edges of waves stay as they are).
