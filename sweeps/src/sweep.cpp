@@ -133,12 +133,14 @@ std::vector<double> spaced(const SweepReader& reader, const YAML::Node& node, co
 const std::vector<std::string> kEventKinds = {"contact", "separation", "cavitation", "rejoin"};
 
 /// The names in summary.json's "solver" block, by method: the characteristics solver's
-/// (resolution, pilot_error_bound and resolution_runs with solver.resolution: auto), the
+/// (resolution, pilot_error_bound, resolution_runs and aim_interactions with solver.resolution:
+/// auto), the
 /// finite-volume scheme's.
 const std::vector<std::string> kCharacteristicsNumbers = {
-    "tolerance",       "error_bound",  "weak_wave_threshold", "waves_held_back",   "fronts_merged",  "error_defects",
-    "error_fans",      "error_merges", "error_carried",       "droplets",          "error_droplets", "fronts_alive_max",
-    "wave_resolution", "fan_step_max", "resolution",          "pilot_error_bound", "resolution_runs"};
+    "tolerance",         "error_bound",      "weak_wave_threshold", "waves_held_back", "fronts_merged",
+    "error_defects",     "error_fans",       "error_merges",        "error_carried",   "droplets",
+    "error_droplets",    "fronts_alive_max", "wave_resolution",     "fan_step_max",    "resolution",
+    "pilot_error_bound", "resolution_runs",  "aim_interactions"};
 const std::vector<std::string> kFiniteVolumeNumbers = {"cells", "cells_total", "order", "cfl", "steps"};
 
 std::string listed(const std::vector<std::string>& names) {

@@ -530,8 +530,9 @@ TEST(ErrorBound, TheAimResolvesBelowTheToleranceUntilTheBoundMeetsIt) {
 TEST(ErrorBound, TheAimResolvesAsFinelyAsItsBudgetAffords) {
   // The bouncing gas bar at 1e-6 to t = 10 takes about 8e5 interactions resolved to the
   // tolerance, its pilot at 1e-5 about 7.5e4. With solver.budget = 1e5 the pilot may spend a
-  // tenth of it: stopped, it is made again at 1e-4; the aim then resolves as finely as what is
-  // left affords, spends no more than the budget, and says the budget held it.
+  // tenth of it: stopped, it is made again at 1e-4, and a scout at 1e-3 measures how the work
+  // follows the resolution; the aim then resolves as finely as what is left affords, spends no
+  // more than the budget, and says the budget held it.
   std::string yaml = kBouncingGasLong + "solver: {tolerance: 1e-6, budget: 100000}\ntime: {end: 10}\n";
   const Scene scene = load_scene_string(yaml, "<test>");
   const RunResult aimed = solve(scene);
@@ -539,7 +540,7 @@ TEST(ErrorBound, TheAimResolvesAsFinelyAsItsBudgetAffords) {
   const double resolution = solver_number(aimed, "resolution");
   EXPECT_GT(resolution, 1e-5) << "finer than the budget affords";
   EXPECT_LT(resolution, 1e-4) << "no finer run after the pilot";
-  EXPECT_EQ(solver_number(aimed, "resolution_runs"), 3.0);
+  EXPECT_EQ(solver_number(aimed, "resolution_runs"), 4.0);
   EXPECT_LE(aimed.stats.interactions, scene.solver.budget);
   // The pilot the aim kept is the one made again at 1e-4: its bound is a run's at 1e-4.
   const SceneRun pilot = run(kBouncingGasLong, 1e-4, 10.0);
@@ -552,6 +553,24 @@ TEST(ErrorBound, TheAimResolvesAsFinelyAsItsBudgetAffords) {
   for (const std::string& w : aimed.warnings)
     said = said || w.find("would take more than solver.budget = 100000 interactions") != std::string::npos;
   EXPECT_TRUE(said) << "the warning does not name the budget";
+}
+
+TEST(ErrorBound, AScoutMeasuresTheWorkBeforeTheFirstRunFinerThanThePilot) {
+  // The bouncing gas bar to t = 20 at 2e-5: its pilot at 2e-4 (1.5e4 interactions) books
+  // 1.5e-3, which points to 2e-6; work there follows the resolution as r^-1.1 (2.5e3
+  // interactions at 2e-3), so 1.8e6 interactions. A budget of 2.5e6 affords that, but not as
+  // the default guess r^-1.5 has it (1.5e7): the scout at 2e-3 measures the work, and the aim
+  // makes one run after the pilot, within the tolerance and the budget.
+  std::string yaml = bouncing_gas(20.0) + "solver: {tolerance: 2e-5, budget: 2500000}\ntime: {end: 20}\n";
+  const Scene scene = load_scene_string(yaml, "<test>");
+  const RunResult aimed = solve(scene);
+  EXPECT_EQ(aimed.status, "ok");
+  EXPECT_EQ(solver_number(aimed, "resolution_runs"), 3.0) << "the scout, the pilot and one run";
+  EXPECT_EQ(solver_number(aimed, "resolution"), 2e-6);
+  EXPECT_LE(solver_number(aimed, "error_bound"), 2e-5);
+  // The scout and the pilot cost 1 % of the run (without the scout, a run at 8e-6 comes
+  // between: 24 % more).
+  EXPECT_LT(solver_number(aimed, "aim_interactions"), 1.02 * static_cast<double>(aimed.stats.interactions));
 }
 
 TEST(ErrorBound, APilotOfLinearlyDegenerateBodiesIsNotStoppedByItsShare) {
