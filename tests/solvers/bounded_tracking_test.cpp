@@ -280,13 +280,18 @@ outputs:
 }
 
 // A gas bar drawn out by a bonded piston ramping to 0.1 c over t = 0.3; its far end is free.
-// By t = 8 the ramp's wave has reflected at the free end twice and at the piston once. A free
-// end turns the arriving steps back before they cross the tail of the wave they reflect into,
-// so that wave is shifted (about 0.7 δ² in the labels for steps δ); the bound books that shift
-// and the drift the steps carried, not the staircase of each step that reaches the end. Its
-// errors before the stability factor of 2 then cover the error (4.5 times the error; without
-// the shift 1.9 times, below it; with the staircases 8.3 times).
-TEST(ErrorBound, AFreeEndBooksWhatItsReflectionShiftsNotAStaircase) {
+// By t = 8 the ramp's wave has reflected at the free end twice and at the piston once. The
+// staircase holds a plateau's value up to a wave's first step, half a strip inside the wave,
+// so a step crossing a wave lags at its head and makes it up at its tail; at a free end the
+// arriving steps turn back before the tail of the wave they reflect into, and the reflected
+// steps leave the arriving wave by its tail: both lags are left, and they add (at a wall they
+// cancel). The reflected step is placed where its characteristic is (Tracker::shift_reflection):
+// at 1e-4 the error against a run at 1e-7 is 3.3e-6, a thirtieth of the tolerance (1.27e-5
+// with the reflected steps where the staircase leaves them, as where the two lags are taken
+// to cancel). The bound books the drift the steps carried, not the staircase of each step
+// that reaches the end: its errors before the stability factor of 2 cover the error (2.9
+// times it; with the staircases 8.3 times).
+TEST(ErrorBound, AFreeEndPlacesItsReflectionWhereItsCharacteristicIs) {
   const std::string scene = R"(
 name: ramp_to_a_free_end
 materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}
@@ -301,8 +306,9 @@ outputs: {snapshots: [{times: [8], quantities: [v, s], samples: 4001}]}
   const double error = distance(coarse, fine);
   const double booked = 0.5 * solver_number(coarse.result, "error_bound");  // before the stability factor
   std::printf("ramp to a free end at 1e-4, t = 8: error %.3g, booked %.3g\n", error, booked);
+  EXPECT_LT(error, 0.06 * 1e-4);
   EXPECT_GE(booked, error + solver_number(fine.result, "error_bound"));
-  EXPECT_LT(booked, 3.0 * error);
+  EXPECT_LT(booked, 4.0 * error);
 }
 
 // A rigid bar of two segments against a bonded wall, two slow gas bars beyond it, the last
@@ -557,20 +563,20 @@ TEST(ErrorBound, TheAimResolvesAsFinelyAsItsBudgetAffords) {
 
 TEST(ErrorBound, AScoutMeasuresTheWorkBeforeTheFirstRunFinerThanThePilot) {
   // The bouncing gas bar to t = 20 at 2e-5: its pilot at 2e-4 (1.5e4 interactions) books
-  // 1.5e-3, which points to 2e-6; work there follows the resolution as r^-1.1 (2.5e3
-  // interactions at 2e-3), so 1.8e6 interactions. A budget of 2.5e6 affords that, but not as
-  // the default guess r^-1.5 has it (1.5e7): the scout at 2e-3 measures the work, and the aim
+  // 7.4e-4, which points to 4e-6; work there follows the resolution as r^-1 (1.8e3
+  // interactions at 2e-3), so 9.0e5 interactions. A budget of 1e6 affords that, but not as
+  // the default guess r^-1.5 has it (5.3e6): the scout at 2e-3 measures the work, and the aim
   // makes one run after the pilot, within the tolerance and the budget.
-  std::string yaml = bouncing_gas(20.0) + "solver: {tolerance: 2e-5, budget: 2500000}\ntime: {end: 20}\n";
+  std::string yaml = bouncing_gas(20.0) + "solver: {tolerance: 2e-5, budget: 1000000}\ntime: {end: 20}\n";
   const Scene scene = load_scene_string(yaml, "<test>");
   const RunResult aimed = solve(scene);
   EXPECT_EQ(aimed.status, "ok");
   EXPECT_EQ(solver_number(aimed, "resolution_runs"), 3.0) << "the scout, the pilot and one run";
-  EXPECT_EQ(solver_number(aimed, "resolution"), 2e-6);
+  EXPECT_EQ(solver_number(aimed, "resolution"), 4e-6);
   EXPECT_LE(solver_number(aimed, "error_bound"), 2e-5);
-  // The scout and the pilot cost 1 % of the run (without the scout, a run at 8e-6 comes
-  // between: 24 % more).
-  EXPECT_LT(solver_number(aimed, "aim_interactions"), 1.02 * static_cast<double>(aimed.stats.interactions));
+  EXPECT_LE(aimed.stats.interactions, scene.solver.budget);
+  // The scout and the pilot cost 2 % of the run.
+  EXPECT_LT(solver_number(aimed, "aim_interactions"), 1.03 * static_cast<double>(aimed.stats.interactions));
 }
 
 TEST(ErrorBound, APilotOfLinearlyDegenerateBodiesIsNotStoppedByItsShare) {

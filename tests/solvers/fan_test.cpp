@@ -16,6 +16,23 @@
 namespace rigidity {
 namespace {
 
+/// A constant_sound_speed bar (V = 0.5), compressed (s = 0.6) and at rest against a wall on
+/// its right, its left piston withdrawing at 0.2 c, resolved to `tolerance` until `end`, with
+/// `outputs` (the lines under `outputs:`).
+std::string withdrawing_piston(double tolerance, double end, const std::string& outputs) {
+  char head[512];
+  std::snprintf(head, sizeof head, R"(
+name: withdrawing_piston
+materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}
+bodies: [{name: bar, material: gas, length: 1.0, velocity: 0.0, stretch: 0.6}]
+boundaries: {left: {type: piston, velocity: -0.2}, right: {type: wall}}
+solver: {tolerance: %.17g, resolution: tolerance}
+time: {end: %.17g}
+outputs:)",
+                tolerance, end);
+  return head + outputs;
+}
+
 TEST(Fan, WithdrawingPistonLeavesTheExactCentredFan) {
   // A constant_sound_speed bar (V = 0.5), compressed (s = 0.6) and at rest against a wall on
   // its right, its left piston withdrawing at 0.2 c: a centred C+ fan from (X, t) = (0, 0),
@@ -25,19 +42,13 @@ TEST(Fan, WithdrawingPistonLeavesTheExactCentredFan) {
   const double t = 1.0;
   long interactions = -1;
   for (double tolerance : {0.02, 1e-3, 1e-12}) {
-    char yaml[1024];
-    std::snprintf(yaml, sizeof yaml, R"(
-name: withdrawing_piston
-materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}
-bodies: [{name: bar, material: gas, length: 1.0, velocity: 0.0, stretch: 0.6}]
-boundaries: {left: {type: piston, velocity: -0.2}, right: {type: wall}}
-solver: {tolerance: %.17g, resolution: tolerance}
-time: {end: %.17g}
-outputs:
+    char outputs[256];
+    std::snprintf(outputs, sizeof outputs, R"(
   snapshots: [{times: [%.17g], quantities: [s, v, x], samples: 20001}]
   probes: [{name: inside, body: bar, at: 0.5, quantities: [s], every: 0.05}]
 )",
-                  tolerance, t, t);
+                  t);
+    const std::string yaml = withdrawing_piston(tolerance, t, outputs);
     const RunResult r = solve(load_scene_string(yaml, "<test>"));
     const auto gas = exact::constant_sound_speed(1.0, 0.5);
     const exact::Solution<double> ref =
@@ -136,17 +147,12 @@ TEST(Fan, AheadOfItsReflectionTheFanStaysExact) {
     fastest = std::max(fastest, std::abs(exact::characteristic_speed(gas, fan.at(xi), -1)));
   }
   const double times[3] = {t_wall + 0.04, t_wall + 0.06, t_wall + 0.08};
-  char yaml[1024];
-  std::snprintf(yaml, sizeof yaml, R"(
-name: withdrawing_piston_reflected
-materials: {gas: {model: constant_sound_speed, sound_speed: 0.5}}
-bodies: [{name: bar, material: gas, length: 1.0, velocity: 0.0, stretch: 0.6}]
-boundaries: {left: {type: piston, velocity: -0.2}, right: {type: wall}}
-solver: {tolerance: 1e-3, resolution: tolerance}
-time: {end: %.17g}
-outputs: {snapshots: [{times: [%.17g, %.17g, %.17g], quantities: [s, v], samples: 20001}]}
+  char outputs[256];
+  std::snprintf(outputs, sizeof outputs, R"(
+  snapshots: [{times: [%.17g, %.17g, %.17g], quantities: [s, v], samples: 20001}]
 )",
-                times[2], times[0], times[1], times[2]);
+                times[0], times[1], times[2]);
+  const std::string yaml = withdrawing_piston(1e-3, times[2], outputs);
   const RunResult r = solve(load_scene_string(yaml, "<test>"));
   ASSERT_EQ(r.status, "ok");
   for (const double t : times) {

@@ -207,14 +207,17 @@ class Aim {
     return true;
   }
 
-  /// Where the pilot of a scene with a genuinely nonlinear body is above the tolerance, a
-  /// run ten times more coarsely (a tenth of its work or less, at most kCoarsestAim) measures
+  /// Where the pilot of a scene with a genuinely nonlinear body is above the tolerance (and
+  /// left no droplets), a run ten times more coarsely (a tenth of its work or less, at most kCoarsestAim) measures
   /// how the work follows the resolution before the first run finer than the pilot: what is
   /// left of the budget affords a resolution as its measured work says, not a guess.
   void scout() {
     const Attempt& pilot = runs_.front();
     const double r = on_ladder(kScout * pilot.resolution, true);
-    if (scene_.linearly_degenerate() || pilot.bound() <= tolerance_ || r > kCoarsestAim * (1.0 + 1e-12)) return;
+    // (A pilot that left droplets is refined no finer than the tolerance at first: see refine.)
+    if (scene_.linearly_degenerate() || pilot.bound() <= tolerance_ || pilot.droplets() || pilot.spray() ||
+        r > kCoarsestAim * (1.0 + 1e-12))
+      return;
     Attempt a;
     try {
       a = run(r, std::max(1L, static_cast<long>(pilot.interactions())));
@@ -330,7 +333,9 @@ class Aim {
 /// kPilotResolution × tolerance (at most kCoarsestAim, at least the tolerance) measures it; a
 /// scene whose pilot is within the tolerance keeps it (an exact scene's bound is 0: one run).
 /// In a scene with a genuinely nonlinear body, a pilot that takes more than 1/kPilotShare of
-/// `solver.budget` is stopped and made again more coarsely (Aim::pilot).
+/// `solver.budget` is stopped and made again more coarsely (Aim::pilot), and a pilot above the
+/// tolerance is followed by a scout ten times coarser that measures how the work follows the
+/// resolution (Aim::scout).
 /// Otherwise runs at the resolution the last bound points to (next_resolution) follow, at
 /// most kAutoChecks, until one is within the tolerance:
 /// finer than the tolerance where the scene books more than it (transmissions and reflections

@@ -660,10 +660,13 @@ void Tracker::take_in(const std::vector<int>& group, double t, Incoming& in) {
   // head is undone as the reflected steps cross the arriving wave's tail (a wall shifts a
   // reflected ramp by a twentieth of what a free end does); its books are the crossings'.
   bool holds_psi = false;
+  int fronts = 0;
   for (int id : group) {
     const Node& e = nodes_[id];
     if (e.is_end() && e.attach != Attach::body) holds_psi = e.attach == Attach::free || walls_[e.partner].traction;
+    fronts += e.kind == NodeKind::front ? 1 : 0;
   }
+  const bool lone = fronts == 1;  // one step reflected: see shift_reflection
   for (int id : group) {
     Node& n = nodes_[id];
     const double defect = close_defect(n, t);
@@ -695,7 +698,16 @@ void Tracker::take_in(const std::vector<int>& group, double t, Incoming& in) {
       const double line = reconstruction_error(id, t);
       const double reconstructed =
           std::min(staircase, holds_psi && n.smooth && !(line < kInf) ? drift_error(id, t) : line);
-      if (holds_psi && n.smooth) in.carried_in += ledger_.book_fan(reflection_error(id, t));
+      if (holds_psi && n.smooth) {
+        // Where the reflected step is placed where its characteristic is (shift_reflection),
+        // this is what it is booked as if it cannot be; otherwise the reflection's shift now.
+        const double shift = reflection_error(id, t);
+        if (lone) {
+          in.reflect_error[f] = shift;
+        } else {
+          in.carried_in += ledger_.book_fan(shift);
+        }
+      }
       in.steps_staircase[f] += staircase;
       if (n.front_kind == FrontKind::rarefaction) {
         ++in.steps_in[f];
@@ -708,6 +720,17 @@ void Tracker::take_in(const std::vector<int>& group, double t, Incoming& in) {
     if (!n.smooth) {
       in.jump_speed[f] = n.dXdt;
       in.jump_since[f] = n.t0;
+    } else if (n.prev != kNone && n.next != kNone) {
+      // A C− step arrives at a left end, a C+ step at a right end: behind it is away from the end.
+      const bool to_left = n.family < 0;
+      const int behind = strip_edge(to_left ? n.next : n.prev, n.family, to_left ? &Node::next : &Node::prev);
+      if (is_step(behind, n.family)) in.reflect_width[f] = std::abs(nodes_[behind].X_at(t) - n.X_at(t));
+      const Region& ahead_region = to_left ? nodes_[n.prev].right : n.right;
+      const Region& behind_region = to_left ? n.right : nodes_[n.prev].right;
+      if (ahead_region.material == behind_region.material)
+        in.reflect_other_change[f] =
+            speeds_of(behind_region, -n.family).lagrangian - speeds_of(ahead_region, -n.family).lagrangian;
+      in.reflect_speed[f] = n.dXdt;
     }
   }
   for (int id : group)
@@ -1116,6 +1139,7 @@ void Tracker::resolve_group(std::vector<int>& group, double t) {
   int interface = g.interface;
   bool parted_inside = false;
   const int right_holder = link_waves(g, sol, droplet, XL, in.smooth_in.any_smooth, interface, parted_inside, t);
+  if (g.left_boundary != g.right_boundary) shift_reflection(g, in, t);
   settle_and_schedule(g, interface, parted_inside, droplet, right_holder, sol.parted, t);
 }
 
@@ -1187,6 +1211,83 @@ void Tracker::hold_back_weak_wave(RiemannSolution& sol, const Region& left, cons
   const int far_piece = node.kind == NodeKind::right_end ? nodes_[node.partner].piece : node.piece;
   node.defect_cap = weaker * (piece_length(node.piece) + piece_length(far_piece));
   ++suppressed_;
+}
+
+void Tracker::shift_reflection(const Meeting& g, const Incoming& in, double t) {
+  const bool left = g.left_boundary;
+  const std::vector<int>& out = left ? emitted_right_ : emitted_left_;
+  const int f_in = left ? 0 : 1;
+  if (!place_reflection(g, in, t)) {
+    const double unplaced = in.reflect_error[f_in];
+    if (unplaced > 0.0) {
+      const double booked = ledger_.book_fan(unplaced);
+      if (out.empty()) {
+        ledger_.lose(booked);
+      } else {
+        nodes_[out.front()].carried += booked;
+      }
+    }
+  }
+}
+
+bool Tracker::place_reflection(const Meeting& g, const Incoming& in, double t) {
+  const bool left = g.left_boundary;
+  const std::vector<int>& out = left ? emitted_right_ : emitted_left_;
+  const int f_in = left ? 0 : 1;
+  if (out.size() != 1 || in.count_in[f_in] != 1 || in.count_in[1 - f_in] != 0) return false;
+  if (!(in.reflect_width[f_in] < kInf) || in.reflect_speed[f_in] == 0.0) return false;
+  const Node& end = nodes_[left ? g.first : g.last];
+  // An end that moves with the material: a free end or a traction (at a wall or a piston the
+  // arriving step's lag and the reflected step's cancel).
+  if (!end.is_end() ||
+      !(end.attach == Attach::free || (end.attach == Attach::boundary && walls_[end.partner].traction)))
+    return false;
+  Node& r = nodes_[out.front()];
+  if (!r.smooth || r.prev == kNone || r.next == kNone) return false;
+  const Region& behind = left ? nodes_[r.prev].right : r.right;  // the end's side
+  const Region& ahead = left ? r.right : nodes_[r.prev].right;
+  if (behind.material != ahead.material || behind.material->linearly_degenerate()) return false;
+  const int family_in = left ? -1 : +1;
+  const double speed_in = std::abs(in.reflect_speed[f_in]), speed_out = std::abs(r.dXdt);
+  if (!(speed_in > 0.0 && speed_out > 0.0)) return false;
+  const double closing = speed_in + speed_out;
+  // The strip of the arriving wave behind the step, and of the reflected wave it becomes.
+  const double width_in = in.reflect_width[f_in], width_out = width_in * speed_out / speed_in;
+  // Over the half strip ahead of the reflected wave's first step the staircase holds the
+  // plateau's value where the wave has a quarter of that step's jump more on average: the
+  // arriving step moves that much off its characteristic's speed for the time it takes to
+  // cross it (its lag, in X), and arrives late by as much over its speed.
+  const double change_in = speeds_of(behind, family_in).lagrangian - speeds_of(ahead, family_in).lagrangian;
+  const double lag_in = -0.25 * change_in * 0.5 * width_out / closing;
+  const double late = (family_in < 0 ? 1.0 : -1.0) * lag_in / speed_in;
+  // The reflected step, leaving the arriving wave at its tail, will gain as much the other way
+  // over the half strip behind that wave's last step.
+  const double lag_out = 0.25 * in.reflect_other_change[f_in] * 0.5 * width_in / closing;
+  const double d = r.dXdt * late - lag_out;
+  const double X = r.X_at(t);
+  const int inward = left ? r.next : r.prev;
+  const double room = std::abs(nodes_[inward].X_at(t) - X);
+  if (!((left ? d : -d) >= 0.0) || !(std::abs(d) < kReflectionRoom * room)) return false;
+  // The labels it passes over change state: what that makes of the totals is booked with what
+  // the smooth steps make. The lab positions keep the longer region ahead of it as it was,
+  // and the end, which moved at its old velocity while the step was late, takes the
+  // difference (third order in the step).
+  const Region::Books& b_behind = books_of(behind);
+  const Region::Books& b_ahead = books_of(ahead);
+  const double moved = left ? d : -d;  // labels taken from the region ahead into the one behind
+  waves_energy_ += moved * (b_behind.energy - b_ahead.energy);
+  waves_momentum_ += moved * (b_behind.momentum - b_ahead.momentum);
+  Node& e = nodes_[left ? g.first : g.last];
+  const double dx = d * label_density(ahead.state);
+  e.x0 = e.x_at(t) + d * (label_density(ahead.state) - label_density(behind.state));
+  e.X0 = e.X_at(t);
+  e.t0 = t;
+  ++e.version;
+  r.x0 = r.x_at(t) + dx;
+  r.X0 = X + d;
+  r.t0 = t;
+  ++r.version;
+  return true;
 }
 
 void Tracker::set_offsets(int first, int last, bool left_boundary, bool right_boundary, const double offset_in[2],
