@@ -566,7 +566,9 @@ TEST(ErrorBound, AScoutMeasuresTheWorkBeforeTheFirstRunFinerThanThePilot) {
   // 7.4e-4, which points to 4e-6; work there follows the resolution as r^-1 (1.8e3
   // interactions at 2e-3), so 9.0e5 interactions. A budget of 1e6 affords that, but not as
   // the default guess r^-1.5 has it (5.3e6): the scout at 2e-3 measures the work, and the aim
-  // makes one run after the pilot, within the tolerance and the budget.
+  // makes one run after the pilot, within the tolerance and the budget (without the scout a
+  // run at the guess comes first, and the budget holds the aim at 5e-6, its bound 2.05e-5
+  // above the tolerance).
   std::string yaml = bouncing_gas(20.0) + "solver: {tolerance: 2e-5, budget: 1000000}\ntime: {end: 20}\n";
   const Scene scene = load_scene_string(yaml, "<test>");
   const RunResult aimed = solve(scene);

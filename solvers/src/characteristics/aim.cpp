@@ -208,9 +208,10 @@ class Aim {
   }
 
   /// Where the pilot of a scene with a genuinely nonlinear body is above the tolerance (and
-  /// left no droplets), a run ten times more coarsely (a tenth of its work or less, at most kCoarsestAim) measures
-  /// how the work follows the resolution before the first run finer than the pilot: what is
-  /// left of the budget affords a resolution as its measured work says, not a guess.
+  /// left no droplets), a run ten times more coarsely (a tenth of its work or less, at most
+  /// kCoarsestAim) measures how the work follows the resolution before the first run finer
+  /// than the pilot: what is left of the budget affords a resolution as its measured work
+  /// says, not a guess. The scout is never the run handed on: only its work is kept.
   void scout() {
     const Attempt& pilot = runs_.front();
     const double r = on_ladder(kScout * pilot.resolution, true);
@@ -225,9 +226,8 @@ class Aim {
       return;
     }
     if (!a.finished()) return;
-    a.drop_outputs();
-    runs_.insert(runs_.begin(), std::move(a));
-    pilot_ = 1;
+    scout_resolution_ = r;
+    scout_interactions_ = a.interactions();
   }
 
   /// Runs at the resolution the last bound points to (next_resolution), at most kAutoChecks,
@@ -239,14 +239,12 @@ class Aim {
     // book an error that does not, and a pilot as coarse as kCoarsestAim is coarser than any a
     // spray takes.
     const double finest_allowed = on_ladder(kFinestResolution * tolerance_, true);
-    const Attempt& pilot = runs_[pilot_];
+    const Attempt& pilot = runs_.front();
     double finest = pilot.spray() || pilot.droplets() ? tolerance_ : finest_allowed;
     Scaling scaling;
-    if (pilot_ > 0) {
-      const Attempt& scout = runs_.front();
-      scaling.measure_work(scout.resolution, scout.interactions(), pilot.resolution, pilot.interactions());
-    }
-    while (runs_.size() <= static_cast<std::size_t>(kAutoChecks + pilot_) && runs_.back().bound() > tolerance_ &&
+    if (scout_interactions_ > 0.0)
+      scaling.measure_work(scout_resolution_, scout_interactions_, pilot.resolution, pilot.interactions());
+    while (runs_.size() <= static_cast<std::size_t>(kAutoChecks) && runs_.back().bound() > tolerance_ &&
            !recorder_.stop_asked()) {
       const Attempt& last = runs_.back();
       bool by_budget = false;
@@ -290,7 +288,7 @@ class Aim {
   /// The run chosen (choose), handed to the recorder, with the aim's numbers and, where its
   /// bound is above the tolerance, where and why the aim stopped.
   RunResult hand_on() {
-    const double pilot_bound = runs_[pilot_].bound();
+    const double pilot_bound = runs_.front().bound();
     Attempt& best = runs_[choose(runs_, tolerance_)];
     replay(best, recorder_);
     RunResult result = std::move(best.result);
@@ -322,9 +320,9 @@ class Aim {
   double left_;  ///< of the budget
   double time_ = 0.0;
   int made_ = 0;
-  std::vector<Attempt> runs_;  ///< the scout, if made, the pilot, then the runs that finished or were stopped
-  std::size_t pilot_ = 0;      ///< the pilot's place in runs_ (1 after a scout)
-  std::string short_of_;       ///< why the aim ended with the bound above the tolerance
+  std::vector<Attempt> runs_;  ///< the pilot, then the runs that finished or were stopped
+  double scout_resolution_ = 0.0, scout_interactions_ = 0.0;  ///< the scout's, if one was made
+  std::string short_of_;                                      ///< why the aim ended with the bound above the tolerance
 };
 
 }  // namespace
