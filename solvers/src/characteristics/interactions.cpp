@@ -61,9 +61,10 @@ void Tracker::schedule_meets(int a, int b) {
 /// guess by secant steps to round-off, or until they miss each other by less than
 /// star_mismatch_; each front carries what its state misses its curve by as an error rate
 /// for as long as it lives. Two steps of smooth waves crossing head-on are characteristics
-/// and take the two-rarefaction star as it is (steps_pass). A C− wave left weaker than the threshold by two fronts of
-/// one family merging is held back (its strength times the length it could sweep is booked). Returns false (doing
-/// nothing) when the full Riemann problem is needed: a crowd, a strong shock, a fan to split, cavitation.
+/// and take the two-rarefaction star as it is (steps_pass). A C− wave left weaker than the
+/// threshold by two fronts of one family merging is held back (its strength times the length
+/// it could sweep is booked). Returns false (doing nothing) when the full Riemann problem is
+/// needed: a crowd, a strong shock, a fan to split, cavitation.
 bool Tracker::cross_in_place(int a, int b, double t, InPlace& c) {
   CrossingSides s;
   if (!two_rarefaction_star(a, b, t, s, c)) return false;
@@ -653,12 +654,13 @@ void Tracker::take_in(const std::vector<int>& group, double t, Incoming& in) {
   // A rarefaction step that leaves as the only step of its family keeps its age (its
   // fan error goes on growing); otherwise the error it carries is booked now.
   // At an end that holds Ψ (a free end, a traction), a smooth wave goes on as the reflected
-  // wave, reconstructed there as it was here: each step books what the reflection shifts the
-  // reflected wave by (reflection_error), and a fan step with no line of its wave next to it
-  // the drift it has carried, not the staircase the reflected wave no longer is. At an end
-  // that holds φ (a wall, a piston) the shift the arriving steps take at the reflected wave's
-  // head is undone as the reflected steps cross the arriving wave's tail (a wall shifts a
-  // reflected ramp by a twentieth of what a free end does); its books are the crossings'.
+  // wave, reconstructed there as it was here: a step that arrives alone is reflected where its
+  // characteristic is (shift_reflection), and books what the reflection shifts the reflected
+  // wave by (reflection_error) only where it cannot be placed so; steps arriving together book
+  // it here. A fan step with no line of its wave next to it books the drift it has carried,
+  // not the staircase the reflected wave no longer is. At an end that holds φ (a wall, a
+  // piston) the shift the arriving steps take at the reflected wave's head is undone as the
+  // reflected steps cross the arriving wave's tail; its books are the crossings'.
   bool holds_psi = false;
   int fronts = 0;
   for (int id : group) {
@@ -699,8 +701,6 @@ void Tracker::take_in(const std::vector<int>& group, double t, Incoming& in) {
       const double reconstructed =
           std::min(staircase, holds_psi && n.smooth && !(line < kInf) ? drift_error(id, t) : line);
       if (holds_psi && n.smooth) {
-        // Where the reflected step is placed where its characteristic is (shift_reflection),
-        // this is what it is booked as if it cannot be; otherwise the reflection's shift now.
         const double shift = reflection_error(id, t);
         if (lone) {
           in.reflect_error[f] = shift;
@@ -720,8 +720,9 @@ void Tracker::take_in(const std::vector<int>& group, double t, Incoming& in) {
     if (!n.smooth) {
       in.jump_speed[f] = n.dXdt;
       in.jump_since[f] = n.t0;
-    } else if (n.prev != kNone && n.next != kNone) {
-      // A C− step arrives at a left end, a C+ step at a right end: behind it is away from the end.
+    } else if (lone && holds_psi && n.prev != kNone && n.next != kNone) {
+      // What shift_reflection places the step it becomes by. A C− step arrives at a left end,
+      // a C+ step at a right end: behind it is away from the end.
       const bool to_left = n.family < 0;
       const int behind = strip_edge(to_left ? n.next : n.prev, n.family, to_left ? &Node::next : &Node::prev);
       if (is_step(behind, n.family)) in.reflect_width[f] = std::abs(nodes_[behind].X_at(t) - n.X_at(t));

@@ -1099,7 +1099,8 @@ class Tracker {
   /// cross the reflected wave's tail (a free end shifts the reflected wave by about 0.7 δ² in
   /// the labels for steps δ). Booked as a quarter of the step's jump times the change of the
   /// other family's speed across it times the time its wave takes to cross the room inward of
-  /// it: nothing in a linearly degenerate body, second order in the step in any other.
+  /// it: nothing in a linearly degenerate body, second order in the step in any other. Booked
+  /// only where the reflected step is not placed where its characteristic is (shift_reflection).
   double reflection_error(int id, double t) const;
   /// Books fan step `id`'s error up to t in the ledger and returns it, for the wave that
   /// carries it on (every error in the bound travels with a wave or stays where booked).
