@@ -133,9 +133,8 @@ std::vector<double> spaced(const SweepReader& reader, const YAML::Node& node, co
 const std::vector<std::string> kEventKinds = {"contact", "separation", "cavitation", "rejoin"};
 
 /// The names in summary.json's "solver" block, by method: the characteristics solver's
-/// (resolution, pilot_error_bound, resolution_runs and aim_interactions with solver.resolution:
-/// auto), the
-/// finite-volume scheme's.
+/// (resolution, pilot_error_bound, resolution_runs and aim_interactions with
+/// solver.resolution: auto), the finite-volume scheme's.
 const std::vector<std::string> kCharacteristicsNumbers = {
     "tolerance",         "error_bound",      "weak_wave_threshold", "waves_held_back", "fronts_merged",
     "error_defects",     "error_fans",       "error_merges",        "error_carried",   "droplets",

@@ -1237,7 +1237,7 @@ bool Tracker::place_reflection(const Meeting& g, const Incoming& in, double t) {
   const int f_in = left ? 0 : 1;
   if (out.size() != 1 || in.count_in[f_in] != 1 || in.count_in[1 - f_in] != 0) return false;
   if (!(in.reflect_width[f_in] < kInf) || in.reflect_speed[f_in] == 0.0) return false;
-  const Node& end = nodes_[left ? g.first : g.last];
+  Node& end = nodes_[left ? g.first : g.last];
   // An end that moves with the material: a free end or a traction (at a wall or a piston the
   // arriving step's lag and the reflected step's cancel).
   if (!end.is_end() ||
@@ -1278,12 +1278,11 @@ bool Tracker::place_reflection(const Meeting& g, const Incoming& in, double t) {
   const double moved = left ? d : -d;  // labels taken from the region ahead into the one behind
   waves_energy_ += moved * (b_behind.energy - b_ahead.energy);
   waves_momentum_ += moved * (b_behind.momentum - b_ahead.momentum);
-  Node& e = nodes_[left ? g.first : g.last];
   const double dx = d * label_density(ahead.state);
-  e.x0 = e.x_at(t) + d * (label_density(ahead.state) - label_density(behind.state));
-  e.X0 = e.X_at(t);
-  e.t0 = t;
-  ++e.version;
+  end.x0 = end.x_at(t) + d * (label_density(ahead.state) - label_density(behind.state));
+  end.X0 = end.X_at(t);
+  end.t0 = t;
+  ++end.version;
   r.x0 = r.x_at(t) + dx;
   r.X0 = X + d;
   r.t0 = t;

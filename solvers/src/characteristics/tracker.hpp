@@ -627,27 +627,26 @@ class Tracker {
     int count_in[2] = {0, 0};
     int families_in[2] = {kNone, kNone};  ///< the piece each family came in from
     int last_in[2] = {kNone, kNone};      ///< the last front of each family that came in
-    /// Each family's smooth step arriving at an end: the width of its wave's strip behind it
-    /// (kInf: none), the change of the other family's speed across it (behind less ahead),
-    /// and its speed (see shift_reflection).
+    /// A lone smooth step of each family arriving at an end that holds Ψ: the width of its
+    /// wave's strip behind it (kInf: none), the change of the other family's speed across it
+    /// (behind less ahead), and its speed (see shift_reflection).
     double reflect_width[2] = {kInf, kInf}, reflect_other_change[2] = {0.0, 0.0}, reflect_speed[2] = {0.0, 0.0};
     /// What a lone step's reflection at an end that holds Ψ shifts the reflected wave by
     /// (reflection_error), booked only where the reflected step cannot be placed.
     double reflect_error[2] = {0.0, 0.0};
   };
-  /// A smooth step reflected at an end as one smooth step: placed where its characteristic
-  /// is. Each step crossing a wave of the other family meets its head half a strip late (the
-  /// staircase holds the plateau's value up to the wave's first step, which stands at the mean
-  /// of its sides, half a strip inside the wave) and makes it up at its tail; the arriving
-  /// step turns back before it crosses the tail of the wave it is reflected into, and the
-  /// reflected step will cross the tail of the arriving wave, not its head. Both shifts are
-  /// known here: the reflected step starts ahead by what the arriving one lagged, less what it
-  /// will lag itself.
+  /// A lone smooth step reflected at a free end or a traction as one smooth step: placed where
+  /// its characteristic is (place_reflection), or, where it cannot be, booked with what the
+  /// reflection shifts its wave by (Incoming::reflect_error). Each step crossing a wave of the other family meets its
+  /// head half a strip late (the staircase holds the plateau's value up to the wave's first step, which stands at the
+  /// mean of its sides, half a strip inside the wave) and makes it up at its tail; the arriving step turns back before
+  /// it crosses the tail of the wave it is reflected into, and the reflected step will cross the tail of the arriving
+  /// wave, not its head. Both shifts are known here: the reflected step starts ahead by what the arriving one lagged,
+  /// less what it will lag itself.
   void shift_reflection(const Meeting& g, const Incoming& in, double t);
   /// shift_reflection's placing of a lone reflected step (false where the reflection is no
-  /// lone smooth step in a genuinely nonlinear body at a free end, a traction, a wall or a
-  /// steady piston, or the place is outward of the end or past kReflectionRoom of the room to
-  /// the next node).
+  /// lone smooth step in a genuinely nonlinear body at a free end or a traction, or the place
+  /// is outward of the end or past kReflectionRoom of the room to the next node).
   bool place_reflection(const Meeting& g, const Incoming& in, double t);
   static constexpr double kReflectionRoom = 0.25;
   /// Closes the books of a group's fronts at t (energy, defects; a rarefaction step that leaves
